@@ -1,0 +1,82 @@
+//! The element-kernel trait: an element maps nodal coordinates and displacements to internal
+//! forces and a tangent, calling a [`Material`] at each integration point.
+//!
+//! Kernels fill caller-owned buffers; they allocate nothing per call.
+
+use crate::material::{Material, MaterialError};
+use crate::mesh::CellType;
+use crate::voigt::Stress;
+
+/// Analysis kinematics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kinematics {
+    /// Three-dimensional solid, 3 displacement components per node.
+    Solid3D,
+    /// Axisymmetric solid in the (r, z) plane (x = r >= 0, y = z), 2 components per node.
+    Axisymmetric,
+}
+
+impl Kinematics {
+    pub fn dofs_per_node(self) -> usize {
+        match self {
+            Kinematics::Solid3D => 3,
+            Kinematics::Axisymmetric => 2,
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            Kinematics::Solid3D => "3d",
+            Kinematics::Axisymmetric => "axisymmetric",
+        }
+    }
+}
+
+/// Caller-owned buffers for one element evaluation.
+pub struct ElementBuffers<'a> {
+    /// Internal force vector f = integral B^T sigma dV, length n_nodes * dofs_per_node.
+    pub force: &'a mut [f64],
+    /// Tangent K = integral B^T C B dV, row-major, (n_dofs)^2; `None` when only forces are needed.
+    pub stiffness: Option<&'a mut [f64]>,
+    /// Stress at each integration point.
+    pub stress: &'a mut [Stress],
+}
+
+/// A small-strain solid element formulation for one cell type.
+pub trait ElementKernel: Send + Sync {
+    fn cell_type(&self) -> CellType;
+    fn kinematics(&self) -> Kinematics;
+    fn n_nodes(&self) -> usize {
+        self.cell_type().n_nodes()
+    }
+    fn n_dofs(&self) -> usize {
+        self.n_nodes() * self.kinematics().dofs_per_node()
+    }
+    /// Number of integration points.
+    fn n_points(&self) -> usize;
+
+    /// Evaluates the element: `coords` are the nodal positions, `displacement` the nodal
+    /// displacements (node-major), states are `n_points * material.n_state()` long.
+    /// Returns the element volume (axisymmetric: 2 pi integral r dA).
+    #[allow(clippy::too_many_arguments)]
+    fn evaluate(
+        &self,
+        coords: &[[f64; 3]],
+        displacement: &[f64],
+        material: &dyn Material,
+        state_committed: &[f64],
+        state_trial: &mut [f64],
+        buffers: ElementBuffers<'_>,
+    ) -> Result<f64, ElementFailure>;
+
+    /// Weight (volume share) of each integration point, for averages.
+    fn point_volumes(&self, coords: &[[f64; 3]], out: &mut [f64]);
+}
+
+/// An element evaluation failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ElementFailure {
+    /// The material failed at this integration point.
+    Material { point: usize, error: MaterialError },
+    /// The element is inverted or degenerate (Jacobian determinant <= 0).
+    BadJacobian { point: usize, det: f64 },
+}

@@ -1,0 +1,528 @@
+//! The assembled model: degrees of freedom, prescribed displacements, external loads, element
+//! sets (kernel + material + cells), extra contributions (interfaces), and assembly of the
+//! residual and tangent into a sparsity pattern built once.
+//!
+//! Equilibrium solved: r(u) = f_int(u) + f_iface(u) - f_ext(t) = 0 on the free dofs, with the
+//! prescribed dofs set to u_p(t) = scale * amplitude(t).
+
+use crate::amplitude::Amplitude;
+use crate::element::{ElementBuffers, ElementFailure, ElementKernel, Kinematics};
+use crate::error::{CoreError, Result};
+use crate::material::Material;
+use crate::mesh::Mesh;
+use crate::sparse::{NO_SLOT, SparsityPattern};
+use crate::voigt::Stress;
+use rayon::prelude::*;
+use std::sync::Arc;
+
+/// Cells that share one kernel and one material.
+pub struct ElementSet {
+    /// Name (the physical group) for messages and output.
+    pub name: String,
+    pub kernel: Box<dyn ElementKernel>,
+    pub material: Arc<dyn Material>,
+    /// Flattened connectivity (gmsh local order), `kernel.n_nodes()` per cell.
+    pub connectivity: Vec<usize>,
+    state_committed: Vec<f64>,
+    state_trial: Vec<f64>,
+    stress: Vec<Stress>,
+    slots: Vec<u32>,
+}
+
+impl ElementSet {
+    pub fn new(
+        name: impl Into<String>,
+        kernel: Box<dyn ElementKernel>,
+        material: Arc<dyn Material>,
+        connectivity: Vec<usize>,
+    ) -> Self {
+        let n_cells = connectivity.len() / kernel.n_nodes();
+        let n_points = n_cells * kernel.n_points();
+        let ns = material.n_state();
+        let mut state = vec![0.0; n_points * ns];
+        if ns > 0 {
+            for s in state.chunks_exact_mut(ns) {
+                material.initialize_state(s);
+            }
+        }
+        Self {
+            name: name.into(),
+            kernel,
+            material,
+            connectivity,
+            state_trial: state.clone(),
+            state_committed: state,
+            stress: vec![[0.0; 6]; n_points],
+            slots: Vec::new(),
+        }
+    }
+    pub fn n_cells(&self) -> usize {
+        self.connectivity.len() / self.kernel.n_nodes()
+    }
+    pub fn cell(&self, i: usize) -> &[usize] {
+        let n = self.kernel.n_nodes();
+        &self.connectivity[i * n..(i + 1) * n]
+    }
+    /// Stress at the integration points of the last assembly (trial or committed).
+    pub fn stresses(&self) -> &[Stress] {
+        &self.stress
+    }
+    /// Committed material state, `n_points * n_state` numbers.
+    pub fn committed_state(&self) -> &[f64] {
+        &self.state_committed
+    }
+}
+
+/// Something besides the solid elements that adds forces and stiffness: interfaces, contact.
+pub trait Contribution: Send {
+    fn name(&self) -> &str;
+    /// Node lists whose dofs this contribution couples (added to the sparsity pattern).
+    fn coupled_nodes(&self) -> Vec<Vec<usize>> {
+        Vec::new()
+    }
+    /// Adds this contribution's force to `force` (full dof vector) and, if given, its tangent
+    /// through `add_tangent(global_row_dof, global_col_dof, value)`.
+    fn assemble(
+        &mut self,
+        time: f64,
+        displacement: &[f64],
+        force: &mut [f64],
+        tangent: Option<&mut dyn FnMut(usize, usize, f64)>,
+    ) -> Result<()>;
+    fn commit(&mut self) {}
+    fn rollback(&mut self) {}
+    /// Named scalars for `history.csv` at the committed state.
+    fn history(&self) -> Vec<(String, f64)> {
+        Vec::new()
+    }
+}
+
+/// A prescribed displacement component: u[dof] = scale * amplitude(t).
+#[derive(Debug, Clone)]
+pub struct Prescribed {
+    pub dof: usize,
+    pub scale: f64,
+    pub amplitude: Arc<Amplitude>,
+    /// The boundary condition it came from, for messages.
+    pub source: String,
+}
+
+/// An external nodal load vector scaled by an amplitude: f_ext(t) += amplitude(t) * vector.
+#[derive(Debug, Clone)]
+pub struct ExternalLoad {
+    pub name: String,
+    pub vector: Vec<f64>,
+    pub amplitude: Arc<Amplitude>,
+}
+
+/// Timing of one assembly, for benchmarks.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct AssemblyStats {
+    pub seconds: f64,
+}
+
+/// The model: mesh, kinematics, element sets, boundary conditions and the assembled system.
+pub struct Model {
+    pub mesh: Arc<Mesh>,
+    pub kinematics: Kinematics,
+    pub sets: Vec<ElementSet>,
+    pub contributions: Vec<Box<dyn Contribution>>,
+    pub loads: Vec<ExternalLoad>,
+    prescribed: Vec<Prescribed>,
+    /// Global dof (node * dofs_per_node + component) -> free index, or usize::MAX.
+    free_index: Vec<usize>,
+    free_dofs: Vec<usize>,
+    pattern: Option<SparsityPattern>,
+    /// Current displacement (all dofs) and the last committed one.
+    pub displacement: Vec<f64>,
+    displacement_committed: Vec<f64>,
+    /// Internal force of the last assembly (all dofs), elements plus contributions.
+    pub internal_force: Vec<f64>,
+    /// External force at the last assembled time (all dofs).
+    pub external_force: Vec<f64>,
+    /// Tangent values on the pattern from the last assembly with tangent.
+    pub tangent_values: Vec<f64>,
+    /// Residual on the free dofs from the last assembly.
+    pub residual: Vec<f64>,
+    pub time: f64,
+    pub time_committed: f64,
+}
+
+impl Model {
+    pub fn new(mesh: Arc<Mesh>, kinematics: Kinematics) -> Self {
+        let n = mesh.nodes.len() * kinematics.dofs_per_node();
+        Self {
+            mesh,
+            kinematics,
+            sets: Vec::new(),
+            contributions: Vec::new(),
+            loads: Vec::new(),
+            prescribed: Vec::new(),
+            free_index: Vec::new(),
+            free_dofs: Vec::new(),
+            pattern: None,
+            displacement: vec![0.0; n],
+            displacement_committed: vec![0.0; n],
+            internal_force: vec![0.0; n],
+            external_force: vec![0.0; n],
+            tangent_values: Vec::new(),
+            residual: Vec::new(),
+            time: 0.0,
+            time_committed: 0.0,
+        }
+    }
+
+    pub fn dofs_per_node(&self) -> usize {
+        self.kinematics.dofs_per_node()
+    }
+    pub fn n_dofs(&self) -> usize {
+        self.displacement.len()
+    }
+    pub fn n_free(&self) -> usize {
+        self.free_dofs.len()
+    }
+    pub fn pattern(&self) -> &SparsityPattern {
+        self.pattern.as_ref().expect("Model::finalize must be called before assembly")
+    }
+    pub fn free_dofs(&self) -> &[usize] {
+        &self.free_dofs
+    }
+    pub fn prescribed(&self) -> &[Prescribed] {
+        &self.prescribed
+    }
+
+    /// Prescribes a dof. A dof prescribed twice must get the same history.
+    pub fn prescribe(&mut self, p: Prescribed) -> Result<()> {
+        if let Some(old) = self.prescribed.iter().find(|q| q.dof == p.dof) {
+            let same = (old.scale == p.scale && Arc::ptr_eq(&old.amplitude, &p.amplitude))
+                || (old.scale == 0.0 && p.scale == 0.0);
+            if !same {
+                let dpn = self.dofs_per_node();
+                return Err(CoreError::Invalid(format!(
+                    "node {} component {} is prescribed by both '{}' and '{}' with different values",
+                    p.dof / dpn + 1,
+                    p.dof % dpn,
+                    old.source,
+                    p.source
+                )));
+            }
+            return Ok(());
+        }
+        self.prescribed.push(p);
+        Ok(())
+    }
+
+    /// Numbers the free dofs, fixes nodes that no element uses, builds the sparsity pattern and
+    /// the element slot maps. Call once after adding sets, contributions and constraints.
+    pub fn finalize(&mut self) -> Result<()> {
+        let dpn = self.dofs_per_node();
+        let n_nodes = self.mesh.nodes.len();
+        if self.sets.is_empty() {
+            return Err(CoreError::Invalid("the model has no elements to solve for".into()));
+        }
+        let mut used = vec![false; n_nodes];
+        for set in &self.sets {
+            for &n in &set.connectivity {
+                used[n] = true;
+            }
+        }
+        let mut constrained = vec![false; n_nodes * dpn];
+        for p in &self.prescribed {
+            constrained[p.dof] = true;
+        }
+        self.free_index = vec![usize::MAX; n_nodes * dpn];
+        self.free_dofs.clear();
+        for node in 0..n_nodes {
+            for c in 0..dpn {
+                let g = node * dpn + c;
+                if used[node] && !constrained[g] {
+                    self.free_index[g] = self.free_dofs.len();
+                    self.free_dofs.push(g);
+                }
+            }
+        }
+        if self.free_dofs.is_empty() {
+            return Err(CoreError::Invalid("every degree of freedom is prescribed: nothing to solve".into()));
+        }
+        let extra: Vec<Vec<usize>> = self.contributions.iter().flat_map(|c| c.coupled_nodes()).collect();
+        let free_index = &self.free_index;
+        let dof_of = |node: usize, c: usize| {
+            let f = free_index[node * dpn + c];
+            (f != usize::MAX).then_some(f)
+        };
+        let cells = self
+            .sets
+            .iter()
+            .flat_map(|s| s.connectivity.chunks_exact(s.kernel.n_nodes()))
+            .chain(extra.iter().map(|v| v.as_slice()));
+        let pattern = SparsityPattern::from_cells(self.free_dofs.len(), n_nodes, dpn, cells, dof_of);
+        let mut dofs = Vec::new();
+        let mut slots = Vec::new();
+        for set in &mut self.sets {
+            let nn = set.kernel.n_nodes();
+            let nd = set.kernel.n_dofs();
+            set.slots = Vec::with_capacity(set.n_cells() * nd * nd);
+            for cell in set.connectivity.chunks_exact(nn) {
+                dofs.clear();
+                for &node in cell {
+                    for c in 0..dpn {
+                        dofs.push(dof_of(node, c));
+                    }
+                }
+                pattern.element_slots(&dofs, &mut slots);
+                set.slots.extend_from_slice(&slots);
+            }
+        }
+        self.tangent_values = vec![0.0; pattern.nnz()];
+        self.residual = vec![0.0; self.free_dofs.len()];
+        self.pattern = Some(pattern);
+        Ok(())
+    }
+
+    /// Sets the prescribed dofs and the external force for pseudo-time `t`.
+    pub fn apply_time(&mut self, t: f64) {
+        self.time = t;
+        for p in &self.prescribed {
+            self.displacement[p.dof] = p.scale * p.amplitude.value(t);
+        }
+        self.external_force.fill(0.0);
+        for load in &self.loads {
+            let a = load.amplitude.value(t);
+            for (f, v) in self.external_force.iter_mut().zip(&load.vector) {
+                *f += a * v;
+            }
+        }
+    }
+
+    /// Adds `du` (free dofs) times `alpha` to the displacement.
+    pub fn update_free(&mut self, du: &[f64], alpha: f64) {
+        for (k, &g) in self.free_dofs.iter().enumerate() {
+            self.displacement[g] += alpha * du[k];
+        }
+    }
+
+    /// Assembles internal force, residual and (optionally) the tangent at the current
+    /// displacement; material states are written to the trial copies.
+    pub fn assemble(&mut self, with_tangent: bool) -> Result<AssemblyStats> {
+        let start = std::time::Instant::now();
+        let dpn = self.dofs_per_node();
+        let pattern = self.pattern.as_ref().expect("Model::finalize must be called before assembly");
+        let nnz = pattern.nnz();
+        let n_dofs = self.displacement.len();
+        self.internal_force.fill(0.0);
+        if with_tangent {
+            self.tangent_values.fill(0.0);
+        }
+        let threads = rayon::current_num_threads().max(1);
+        for set in &mut self.sets {
+            let n_cells = set.n_cells();
+            let nn = set.kernel.n_nodes();
+            let nd = set.kernel.n_dofs();
+            let nq = set.kernel.n_points();
+            let ns = set.material.n_state();
+            let n_chunks = if n_cells >= 512 { threads } else { 1 };
+            let per_chunk = n_cells.div_ceil(n_chunks).max(1);
+            // Split the trial state and stress arrays by cell ranges (works for ns == 0 too).
+            let mut jobs = Vec::with_capacity(n_chunks);
+            let mut state_rest: &mut [f64] = &mut set.state_trial;
+            let mut stress_rest: &mut [Stress] = &mut set.stress;
+            let mut first = 0;
+            while first < n_cells {
+                let last = (first + per_chunk).min(n_cells);
+                let (s, r) = std::mem::take(&mut state_rest).split_at_mut((last - first) * nq * ns);
+                state_rest = r;
+                let (t, r2) = std::mem::take(&mut stress_rest).split_at_mut((last - first) * nq);
+                stress_rest = r2;
+                jobs.push((first, last, s, t));
+                first = last;
+            }
+            let kernel = set.kernel.as_ref();
+            let material = set.material.as_ref();
+            let connectivity = &set.connectivity;
+            let committed = &set.state_committed;
+            let slots = &set.slots;
+            let nodes = &self.mesh.nodes;
+            let displacement = &self.displacement;
+            let set_name = &set.name;
+            let single = jobs.len() == 1;
+            let run = |(first, last, state_trial, stress): (usize, usize, &mut [f64], &mut [Stress]),
+                       force: &mut [f64],
+                       values: &mut [f64]|
+             -> Result<()> {
+                let mut coords = vec![[0.0; 3]; nn];
+                let mut u = vec![0.0; nd];
+                let mut fe = vec![0.0; nd];
+                let mut ke = vec![0.0; nd * nd];
+                for cell in first..last {
+                    let conn = &connectivity[cell * nn..(cell + 1) * nn];
+                    for (a, &node) in conn.iter().enumerate() {
+                        coords[a] = nodes[node];
+                        for c in 0..dpn {
+                            u[a * dpn + c] = displacement[node * dpn + c];
+                        }
+                    }
+                    let local = cell - first;
+                    let buffers = ElementBuffers {
+                        force: &mut fe,
+                        stiffness: if with_tangent { Some(&mut ke) } else { None },
+                        stress: &mut stress[local * nq..(local + 1) * nq],
+                    };
+                    kernel
+                        .evaluate(
+                            &coords,
+                            &u,
+                            material,
+                            &committed[cell * nq * ns..(cell + 1) * nq * ns],
+                            &mut state_trial[local * nq * ns..(local + 1) * nq * ns],
+                            buffers,
+                        )
+                        .map_err(|f| element_error(set_name, material.name(), cell, f))?;
+                    for (a, &node) in conn.iter().enumerate() {
+                        for c in 0..dpn {
+                            force[node * dpn + c] += fe[a * dpn + c];
+                        }
+                    }
+                    if with_tangent {
+                        let cell_slots = &slots[cell * nd * nd..(cell + 1) * nd * nd];
+                        for (k, &s) in cell_slots.iter().enumerate() {
+                            if s != NO_SLOT {
+                                values[s as usize] += ke[k];
+                            }
+                        }
+                    }
+                }
+                Ok(())
+            };
+            if single {
+                let job = jobs.pop().unwrap();
+                run(job, &mut self.internal_force, &mut self.tangent_values)?;
+            } else {
+                let partials: Vec<Result<(Vec<f64>, Vec<f64>)>> = jobs
+                    .into_par_iter()
+                    .map(|job| {
+                        let mut force = vec![0.0; n_dofs];
+                        let mut values = if with_tangent { vec![0.0; nnz] } else { Vec::new() };
+                        run(job, &mut force, &mut values).map(|_| (force, values))
+                    })
+                    .collect();
+                for part in partials {
+                    let (force, values) = part?;
+                    for (a, b) in self.internal_force.iter_mut().zip(&force) {
+                        *a += b;
+                    }
+                    if with_tangent {
+                        self.tangent_values.par_iter_mut().zip(values.par_iter()).for_each(|(a, b)| *a += b);
+                    }
+                }
+            }
+        }
+        // Interfaces and other contributions.
+        let free_index = &self.free_index;
+        let values = &mut self.tangent_values;
+        for contribution in &mut self.contributions {
+            let mut add = |r: usize, c: usize, v: f64| {
+                let (fr, fc) = (free_index[r], free_index[c]);
+                if fr != usize::MAX && fc != usize::MAX {
+                    if let Some(s) = pattern.slot(fr, fc) {
+                        values[s] += v;
+                    }
+                }
+            };
+            contribution.assemble(
+                self.time,
+                &self.displacement,
+                &mut self.internal_force,
+                if with_tangent { Some(&mut add) } else { None },
+            )?;
+        }
+        for (k, &g) in self.free_dofs.iter().enumerate() {
+            self.residual[k] = self.internal_force[g] - self.external_force[g];
+        }
+        if self.residual.iter().any(|r| !r.is_finite()) {
+            return Err(CoreError::NonFinite("residual force vector".into()));
+        }
+        Ok(AssemblyStats { seconds: start.elapsed().as_secs_f64() })
+    }
+
+    /// Accepts the current state as converged.
+    pub fn commit(&mut self) {
+        for set in &mut self.sets {
+            set.state_committed.copy_from_slice(&set.state_trial);
+        }
+        for c in &mut self.contributions {
+            c.commit();
+        }
+        self.displacement_committed.copy_from_slice(&self.displacement);
+        self.time_committed = self.time;
+    }
+
+    /// Returns to the last committed state (a cut step).
+    pub fn rollback(&mut self) {
+        for set in &mut self.sets {
+            set.state_trial.copy_from_slice(&set.state_committed);
+        }
+        for c in &mut self.contributions {
+            c.rollback();
+        }
+        self.displacement.copy_from_slice(&self.displacement_committed);
+        self.time = self.time_committed;
+    }
+
+    /// Reaction (internal minus external force) summed over `nodes`, per component.
+    pub fn reaction(&self, nodes: &[usize]) -> Vec<f64> {
+        let dpn = self.dofs_per_node();
+        let mut r = vec![0.0; dpn];
+        for &n in nodes {
+            for c in 0..dpn {
+                r[c] += self.internal_force[n * dpn + c] - self.external_force[n * dpn + c];
+            }
+        }
+        r
+    }
+
+    /// Total plastic (or other material) dissipation at the committed state:
+    /// sum over points of D(state) * point volume.
+    pub fn dissipation(&self) -> f64 {
+        let mut total = 0.0;
+        let mut vols = Vec::new();
+        for set in &self.sets {
+            let nq = set.kernel.n_points();
+            let ns = set.material.n_state();
+            if ns == 0 {
+                continue;
+            }
+            vols.resize(nq, 0.0);
+            let mut coords = vec![[0.0; 3]; set.kernel.n_nodes()];
+            for cell in 0..set.n_cells() {
+                for (a, &n) in set.cell(cell).iter().enumerate() {
+                    coords[a] = self.mesh.nodes[n];
+                }
+                set.kernel.point_volumes(&coords, &mut vols);
+                for q in 0..nq {
+                    let s = &set.state_committed[(cell * nq + q) * ns..(cell * nq + q + 1) * ns];
+                    total += set.material.dissipation_density(s) * vols[q];
+                }
+            }
+        }
+        total
+    }
+
+    /// Infinity norm of the free part of `v` scaled for convergence checks.
+    pub fn free_norm(&self, v: &[f64]) -> f64 {
+        v.iter().map(|x| x * x).sum::<f64>().sqrt()
+    }
+}
+
+fn element_error(set: &str, material: &str, cell: usize, failure: ElementFailure) -> CoreError {
+    match failure {
+        ElementFailure::Material { point, error } => CoreError::MaterialFailure {
+            material: material.to_string(),
+            element: cell,
+            point,
+            message: format!("{} (element set '{set}')", error.0),
+        },
+        ElementFailure::BadJacobian { point, det } => CoreError::Invalid(format!(
+            "element {cell} of set '{set}' is inverted or degenerate: Jacobian determinant {det:.3e} at point {point}"
+        )),
+    }
+}

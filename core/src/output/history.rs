@@ -1,0 +1,39 @@
+//! `history.csv`: one row per converged step, appended and flushed as the run goes, so an
+//! interrupted run keeps every converged step.
+
+use crate::error::{CoreError, Result};
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+pub struct HistoryWriter {
+    path: PathBuf,
+    columns: Vec<String>,
+    file: BufWriter<File>,
+}
+
+impl HistoryWriter {
+    /// Creates the file with its header line.
+    pub fn create(path: &Path, columns: Vec<String>) -> Result<Self> {
+        let err = |source| CoreError::Write { path: path.to_path_buf(), source };
+        let file = File::create(path).map_err(err)?;
+        let mut file = BufWriter::new(file);
+        writeln!(file, "{}", columns.join(",")).map_err(err)?;
+        file.flush().map_err(err)?;
+        Ok(Self { path: path.to_path_buf(), columns, file })
+    }
+
+    pub fn columns(&self) -> &[String] {
+        &self.columns
+    }
+
+    /// Appends one row (same length as the header) and flushes it to disk.
+    pub fn append(&mut self, row: &[f64]) -> Result<()> {
+        assert_eq!(row.len(), self.columns.len(), "history row does not match its header");
+        let err = |source| CoreError::Write { path: self.path.clone(), source };
+        let line: Vec<String> = row.iter().map(|v| format!("{v:.10e}")).collect();
+        writeln!(self.file, "{}", line.join(",")).map_err(err)?;
+        self.file.flush().map_err(err)?;
+        self.file.get_ref().sync_data().map_err(err)
+    }
+}
