@@ -1,0 +1,298 @@
+//! Small-strain solid kernels: 3D tetrahedra (tet4, tet10) and axisymmetric triangles
+//! (tri3, tri6 in the r-z plane, hoop strain u_r / r).
+//!
+//! f = sum_q B_q^T sigma_q w_q |J_q| (x 2 pi r_q axisymmetric), K = sum_q B_q^T C_q B_q w_q |J_q|.
+
+use crate::shape;
+use stiction_core::element::{ElementBuffers, ElementFailure, ElementKernel, Kinematics};
+use stiction_core::material::Material;
+use stiction_core::mesh::CellType;
+use stiction_core::quadrature::{self, QuadratureRule};
+use stiction_core::voigt::{Strain, Stress, Tangent};
+
+/// Which quadrature a kernel uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum QuadratureChoice {
+    /// The standard rule: tet4 1 point, tet10 4 points (C3D10), tri3 axisymmetric 3 points,
+    /// tri6 axisymmetric 6 points.
+    Standard,
+    /// A higher rule (collapsed Gauss, degree >= 5) for accuracy studies.
+    High,
+}
+
+/// Shape data at one integration point, precomputed once per kernel.
+#[derive(Debug, Clone)]
+struct PointData {
+    weight: f64,
+    n: Vec<f64>,
+    dn: Vec<[f64; 3]>,
+}
+
+/// A small-strain solid element for one cell type and kinematics.
+#[derive(Debug, Clone)]
+pub struct SolidKernel {
+    cell: CellType,
+    kinematics: Kinematics,
+    points: Vec<PointData>,
+}
+
+impl SolidKernel {
+    /// Creates the kernel; the cell type must suit the kinematics (tets in 3D, triangles in
+    /// axisymmetric models).
+    pub fn new(cell: CellType, kinematics: Kinematics, choice: QuadratureChoice) -> Result<Self, String> {
+        let rule = match (kinematics, cell, choice) {
+            (Kinematics::Solid3D, CellType::Tet4, QuadratureChoice::Standard) => quadrature::tetrahedron_1(),
+            (Kinematics::Solid3D, CellType::Tet10, QuadratureChoice::Standard) => quadrature::tetrahedron_4(),
+            (Kinematics::Solid3D, CellType::Tet4 | CellType::Tet10, QuadratureChoice::High) => {
+                quadrature::tetrahedron_collapsed(4)
+            }
+            (Kinematics::Axisymmetric, CellType::Tri3, QuadratureChoice::Standard) => quadrature::triangle_3(),
+            (Kinematics::Axisymmetric, CellType::Tri6, QuadratureChoice::Standard) => quadrature::triangle_6(),
+            (Kinematics::Axisymmetric, CellType::Tri3 | CellType::Tri6, QuadratureChoice::High) => {
+                quadrature::triangle_collapsed(5)
+            }
+            _ => {
+                return Err(format!(
+                    "a {} cannot be used in a {} analysis (3d: 4- or 10-node tetrahedra; axisymmetric: 3- or 6-node triangles)",
+                    cell.name(),
+                    kinematics.name()
+                ));
+            }
+        };
+        Ok(Self::with_rule(cell, kinematics, &rule))
+    }
+
+    /// Creates the kernel with an explicit rule.
+    pub fn with_rule(cell: CellType, kinematics: Kinematics, rule: &QuadratureRule) -> Self {
+        let nn = cell.n_nodes();
+        let points = rule
+            .points
+            .iter()
+            .zip(&rule.weights)
+            .map(|(xi, &weight)| {
+                let mut n = vec![0.0; nn];
+                let mut dn = vec![[0.0; 3]; nn];
+                shape::evaluate(cell, xi, &mut n, &mut dn);
+                PointData { weight, n, dn }
+            })
+            .collect();
+        Self { cell, kinematics, points }
+    }
+
+    /// Spatial derivatives dN/dx at a point; returns (|J| * weight * [2 pi r]).
+    fn spatial_derivatives(
+        &self,
+        p: &PointData,
+        coords: &[[f64; 3]],
+        dndx: &mut [[f64; 3]],
+    ) -> Result<(f64, f64), f64> {
+        let d = self.cell.dim();
+        // J[i][k] = d x_i / d xi_k
+        let mut j = [[0.0; 3]; 3];
+        for (a, x) in coords.iter().enumerate() {
+            for i in 0..d {
+                for k in 0..d {
+                    j[i][k] += x[i] * p.dn[a][k];
+                }
+            }
+        }
+        let (det, inv) = if d == 3 {
+            let det = j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1])
+                - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
+                + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
+            let inv = [
+                [
+                    (j[1][1] * j[2][2] - j[1][2] * j[2][1]) / det,
+                    (j[0][2] * j[2][1] - j[0][1] * j[2][2]) / det,
+                    (j[0][1] * j[1][2] - j[0][2] * j[1][1]) / det,
+                ],
+                [
+                    (j[1][2] * j[2][0] - j[1][0] * j[2][2]) / det,
+                    (j[0][0] * j[2][2] - j[0][2] * j[2][0]) / det,
+                    (j[0][2] * j[1][0] - j[0][0] * j[1][2]) / det,
+                ],
+                [
+                    (j[1][0] * j[2][1] - j[1][1] * j[2][0]) / det,
+                    (j[0][1] * j[2][0] - j[0][0] * j[2][1]) / det,
+                    (j[0][0] * j[1][1] - j[0][1] * j[1][0]) / det,
+                ],
+            ];
+            (det, inv)
+        } else {
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            let inv = [[j[1][1] / det, -j[0][1] / det, 0.0], [-j[1][0] / det, j[0][0] / det, 0.0], [0.0; 3]];
+            (det, inv)
+        };
+        if !(det > 0.0) {
+            return Err(det);
+        }
+        // dN/dx_i = sum_k dN/dxi_k (J^-1)[k][i]
+        for (a, g) in dndx.iter_mut().enumerate() {
+            *g = [0.0; 3];
+            for i in 0..d {
+                for k in 0..d {
+                    g[i] += p.dn[a][k] * inv[k][i];
+                }
+            }
+        }
+        let mut dv = det * p.weight;
+        let mut r = 0.0;
+        if self.kinematics == Kinematics::Axisymmetric {
+            r = coords.iter().zip(&p.n).map(|(x, n)| x[0] * n).sum::<f64>();
+            dv *= 2.0 * std::f64::consts::PI * r;
+        }
+        Ok((dv, r))
+    }
+
+    /// Fills the 6 x n_dofs strain-displacement matrix (row-major, Voigt rows).
+    fn fill_b(&self, p: &PointData, dndx: &[[f64; 3]], r: f64, b: &mut [f64]) {
+        let nd = self.n_dofs();
+        b.fill(0.0);
+        match self.kinematics {
+            Kinematics::Solid3D => {
+                for (a, g) in dndx.iter().enumerate() {
+                    let c = 3 * a;
+                    b[c] = g[0];
+                    b[nd + c + 1] = g[1];
+                    b[2 * nd + c + 2] = g[2];
+                    b[3 * nd + c] = g[1];
+                    b[3 * nd + c + 1] = g[0];
+                    b[4 * nd + c + 1] = g[2];
+                    b[4 * nd + c + 2] = g[1];
+                    b[5 * nd + c] = g[2];
+                    b[5 * nd + c + 2] = g[0];
+                }
+            }
+            Kinematics::Axisymmetric => {
+                for (a, g) in dndx.iter().enumerate() {
+                    let c = 2 * a;
+                    b[c] = g[0]; // e_rr
+                    b[nd + c + 1] = g[1]; // e_zz
+                    b[2 * nd + c] = p.n[a] / r; // e_tt = u_r / r
+                    b[3 * nd + c] = g[1]; // g_rz
+                    b[3 * nd + c + 1] = g[0];
+                }
+            }
+        }
+    }
+}
+
+impl ElementKernel for SolidKernel {
+    fn cell_type(&self) -> CellType {
+        self.cell
+    }
+    fn kinematics(&self) -> Kinematics {
+        self.kinematics
+    }
+    fn n_points(&self) -> usize {
+        self.points.len()
+    }
+
+    fn evaluate(
+        &self,
+        coords: &[[f64; 3]],
+        displacement: &[f64],
+        material: &dyn Material,
+        state_committed: &[f64],
+        state_trial: &mut [f64],
+        buffers: ElementBuffers<'_>,
+    ) -> Result<f64, ElementFailure> {
+        let nd = self.n_dofs();
+        let nn = self.cell.n_nodes();
+        let ns = material.n_state();
+        let ElementBuffers { force, mut stiffness, stress } = buffers;
+        force.fill(0.0);
+        if let Some(k) = stiffness.as_deref_mut() {
+            k.fill(0.0);
+        }
+        let mut dndx = [[0.0; 3]; 10];
+        let mut b = [0.0; 6 * 30];
+        let mut cb = [0.0; 6 * 30];
+        let b = &mut b[..6 * nd];
+        let cb = &mut cb[..6 * nd];
+        let mut volume = 0.0;
+        for (q, p) in self.points.iter().enumerate() {
+            let (dv, r) = self
+                .spatial_derivatives(p, coords, &mut dndx[..nn])
+                .map_err(|det| ElementFailure::BadJacobian { point: q, det })?;
+            volume += dv;
+            self.fill_b(p, &dndx[..nn], r, b);
+            let mut strain: Strain = [0.0; 6];
+            for (i, e) in strain.iter_mut().enumerate() {
+                *e = b[i * nd..(i + 1) * nd].iter().zip(displacement).map(|(x, u)| x * u).sum();
+            }
+            let mut sigma: Stress = [0.0; 6];
+            let mut c: Tangent = [[0.0; 6]; 6];
+            material
+                .update(
+                    &strain,
+                    &state_committed[q * ns..(q + 1) * ns],
+                    &mut state_trial[q * ns..(q + 1) * ns],
+                    &mut sigma,
+                    &mut c,
+                )
+                .map_err(|error| ElementFailure::Material { point: q, error })?;
+            stress[q] = sigma;
+            for i in 0..6 {
+                if sigma[i] != 0.0 {
+                    let s = sigma[i] * dv;
+                    for (f, x) in force.iter_mut().zip(&b[i * nd..(i + 1) * nd]) {
+                        *f += x * s;
+                    }
+                }
+            }
+            if let Some(k) = stiffness.as_deref_mut() {
+                // CB = C B, then K += B^T (CB) dv
+                for i in 0..6 {
+                    let row = &mut cb[i * nd..(i + 1) * nd];
+                    row.fill(0.0);
+                    for (m, cim) in c[i].iter().enumerate() {
+                        if *cim != 0.0 {
+                            for (x, y) in row.iter_mut().zip(&b[m * nd..(m + 1) * nd]) {
+                                *x += cim * y;
+                            }
+                        }
+                    }
+                }
+                for i in 0..6 {
+                    let brow = &b[i * nd..(i + 1) * nd];
+                    let cbrow = &cb[i * nd..(i + 1) * nd];
+                    for (a, &ba) in brow.iter().enumerate() {
+                        if ba != 0.0 {
+                            let s = ba * dv;
+                            for (kab, cbb) in k[a * nd..(a + 1) * nd].iter_mut().zip(cbrow) {
+                                *kab += s * cbb;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(volume)
+    }
+
+    fn point_volumes(&self, coords: &[[f64; 3]], out: &mut [f64]) {
+        let mut dndx = [[0.0; 3]; 10];
+        for (q, p) in self.points.iter().enumerate() {
+            out[q] = self.spatial_derivatives(p, coords, &mut dndx[..self.cell.n_nodes()]).map(|v| v.0).unwrap_or(0.0);
+        }
+    }
+}
+
+impl SolidKernel {
+    /// Physical positions of the integration points of one cell.
+    pub fn point_positions(&self, coords: &[[f64; 3]]) -> Vec<[f64; 3]> {
+        self.points
+            .iter()
+            .map(|p| {
+                let mut x = [0.0; 3];
+                for (a, c) in coords.iter().enumerate() {
+                    for k in 0..3 {
+                        x[k] += p.n[a] * c[k];
+                    }
+                }
+                x
+            })
+            .collect()
+    }
+}
