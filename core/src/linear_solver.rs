@@ -56,10 +56,17 @@ impl SparseSolver {
             symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
             symbolic.solve_in_place_scratch::<f64>(1, par),
         ]);
-        let workspace = MemBuffer::try_new(req)
-            .map_err(|_| CoreError::Factorization("out of memory for the factorization workspace".into()))?;
+        let workspace = MemBuffer::try_new(req).map_err(|_| {
+            CoreError::Factorization("out of memory for the factorization workspace".into())
+        })?;
         let factor_values = vec![0.0; symbolic.len_val()];
-        Ok(Self { symbolic, factor_values, workspace, kind: None, par })
+        Ok(Self {
+            symbolic,
+            factor_values,
+            workspace,
+            kind: None,
+            par,
+        })
     }
 
     /// Number of stored entries of the factor.
@@ -120,7 +127,9 @@ impl SparseSolver {
     /// Solves A x = b in place (b becomes x) with the last factorization.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
         let n = rhs.len();
-        let kind = self.kind.ok_or_else(|| CoreError::Factorization("solve before factorization".into()))?;
+        let kind = self
+            .kind
+            .ok_or_else(|| CoreError::Factorization("solve before factorization".into()))?;
         let stack = MemStack::new(&mut self.workspace);
         let rhs_mat = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match kind {
@@ -134,7 +143,9 @@ impl SparseSolver {
             }
         }
         if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(CoreError::NonFinite("solution of the linear system (singular tangent?)".into()));
+            return Err(CoreError::NonFinite(
+                "solution of the linear system (singular tangent?)".into(),
+            ));
         }
         Ok(())
     }
@@ -149,7 +160,9 @@ mod tests {
     fn solves_spd_and_indefinite_tridiagonal_systems() {
         let n = 50;
         let cells: Vec<Vec<usize>> = (0..n - 1).map(|i| vec![i, i + 1]).collect();
-        let p = SparsityPattern::from_cells(n, n, 1, cells.iter().map(|c| c.as_slice()), |a, _| Some(a));
+        let p = SparsityPattern::from_cells(n, n, 1, cells.iter().map(|c| c.as_slice()), |a, _| {
+            Some(a)
+        });
         for shift in [0.1, -1.5] {
             let mut values = vec![0.0; p.nnz()];
             for i in 0..n {
@@ -161,13 +174,24 @@ mod tests {
             }
             let mut solver = SparseSolver::new(&p).unwrap();
             let kind = solver.factorize(&p, &values).unwrap();
-            assert_eq!(kind, if shift > 0.0 { FactorKind::Llt } else { FactorKind::Ldlt });
+            assert_eq!(
+                kind,
+                if shift > 0.0 {
+                    FactorKind::Llt
+                } else {
+                    FactorKind::Ldlt
+                }
+            );
             let b: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
             let mut x = b.clone();
             solver.solve_in_place(&mut x).unwrap();
             let mut ax = vec![0.0; n];
             p.multiply(&values, &x, &mut ax);
-            let err = ax.iter().zip(&b).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            let err = ax
+                .iter()
+                .zip(&b)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
             assert!(err < 1e-10, "shift {shift}: residual {err}");
         }
     }

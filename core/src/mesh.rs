@@ -128,7 +128,11 @@ pub struct Mesh {
 impl Mesh {
     /// Highest topological dimension of any cell.
     pub fn dim(&self) -> usize {
-        self.blocks.iter().map(|b| b.cell_type.dim()).max().unwrap_or(0)
+        self.blocks
+            .iter()
+            .map(|b| b.cell_type.dim())
+            .max()
+            .unwrap_or(0)
     }
 
     /// Looks a group up by name, or by its numeric tag written as text.
@@ -142,7 +146,10 @@ impl Mesh {
                 return Ok(hits[0]);
             }
         }
-        Err(CoreError::UnknownGroup { name: name.to_string(), known: self.group_list() })
+        Err(CoreError::UnknownGroup {
+            name: name.to_string(),
+            known: self.group_list(),
+        })
     }
 
     /// "name (dim D, tag T), ..." for messages.
@@ -158,7 +165,10 @@ impl Mesh {
     }
 
     /// Blocks of the given group.
-    pub fn blocks_of<'a>(&'a self, group: &'a PhysicalGroup) -> impl Iterator<Item = &'a CellBlock> + 'a {
+    pub fn blocks_of<'a>(
+        &'a self,
+        group: &'a PhysicalGroup,
+    ) -> impl Iterator<Item = &'a CellBlock> + 'a {
         self.blocks
             .iter()
             .filter(move |b| b.physical_tag == group.tag && b.cell_type.dim() == group.dim)
@@ -166,8 +176,10 @@ impl Mesh {
 
     /// Sorted, unique node indices touched by a group.
     pub fn group_nodes(&self, group: &PhysicalGroup) -> Vec<usize> {
-        let mut nodes: Vec<usize> =
-            self.blocks_of(group).flat_map(|b| b.connectivity.iter().copied()).collect();
+        let mut nodes: Vec<usize> = self
+            .blocks_of(group)
+            .flat_map(|b| b.connectivity.iter().copied())
+            .collect();
         nodes.sort_unstable();
         nodes.dedup();
         nodes

@@ -54,7 +54,10 @@ pub fn gauss_legendre(n: usize) -> QuadratureRule {
 /// u, v in [0, 1]; Jacobian (1 - u). Exact to degree 2n - 2.
 pub fn triangle_collapsed(n: usize) -> QuadratureRule {
     let g = gauss_legendre(n);
-    let mut rule = QuadratureRule { points: vec![], weights: vec![] };
+    let mut rule = QuadratureRule {
+        points: vec![],
+        weights: vec![],
+    };
     for (pu, wu) in g.points.iter().zip(&g.weights) {
         let u = 0.5 * (pu[0] + 1.0);
         for (pv, wv) in g.points.iter().zip(&g.weights) {
@@ -70,15 +73,20 @@ pub fn triangle_collapsed(n: usize) -> QuadratureRule {
 /// z = w (1 - u)(1 - v); Jacobian (1 - u)^2 (1 - v). Exact to degree 2n - 3.
 pub fn tetrahedron_collapsed(n: usize) -> QuadratureRule {
     let g = gauss_legendre(n);
-    let mut rule = QuadratureRule { points: vec![], weights: vec![] };
+    let mut rule = QuadratureRule {
+        points: vec![],
+        weights: vec![],
+    };
     for (pu, wu) in g.points.iter().zip(&g.weights) {
         let u = 0.5 * (pu[0] + 1.0);
         for (pv, wv) in g.points.iter().zip(&g.weights) {
             let v = 0.5 * (pv[0] + 1.0);
             for (pw, ww) in g.points.iter().zip(&g.weights) {
                 let w = 0.5 * (pw[0] + 1.0);
-                rule.points.push([u, v * (1.0 - u), w * (1.0 - u) * (1.0 - v)]);
-                rule.weights.push(0.125 * wu * wv * ww * (1.0 - u) * (1.0 - u) * (1.0 - v));
+                rule.points
+                    .push([u, v * (1.0 - u), w * (1.0 - u) * (1.0 - v)]);
+                rule.weights
+                    .push(0.125 * wu * wv * ww * (1.0 - u) * (1.0 - u) * (1.0 - v));
             }
         }
     }
@@ -87,7 +95,10 @@ pub fn tetrahedron_collapsed(n: usize) -> QuadratureRule {
 
 /// One-point centroid rule of the triangle (degree 1).
 pub fn triangle_1() -> QuadratureRule {
-    QuadratureRule { points: vec![[1.0 / 3.0, 1.0 / 3.0, 0.0]], weights: vec![0.5] }
+    QuadratureRule {
+        points: vec![[1.0 / 3.0, 1.0 / 3.0, 0.0]],
+        weights: vec![0.5],
+    }
 }
 
 /// Three-point interior rule of the triangle (degree 2): points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3).
@@ -119,7 +130,10 @@ pub fn triangle_6() -> QuadratureRule {
 
 /// One-point centroid rule of the tetrahedron (degree 1).
 pub fn tetrahedron_1() -> QuadratureRule {
-    QuadratureRule { points: vec![[0.25, 0.25, 0.25]], weights: vec![1.0 / 6.0] }
+    QuadratureRule {
+        points: vec![[0.25, 0.25, 0.25]],
+        weights: vec![1.0 / 6.0],
+    }
 }
 
 /// Four-point rule of the tetrahedron (degree 2), the C3D10 rule:
@@ -154,8 +168,17 @@ mod tests {
         for n in 1..8 {
             let g = gauss_legendre(n);
             for p in 0..(2 * n) as i32 {
-                let q: f64 = g.points.iter().zip(&g.weights).map(|(x, w)| w * x[0].powi(p)).sum();
-                let exact = if p % 2 == 1 { 0.0 } else { 2.0 / (p as f64 + 1.0) };
+                let q: f64 = g
+                    .points
+                    .iter()
+                    .zip(&g.weights)
+                    .map(|(x, w)| w * x[0].powi(p))
+                    .sum();
+                let exact = if p % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (p as f64 + 1.0)
+                };
                 assert!((q - exact).abs() < 1e-13, "n={n} p={p}: {q} vs {exact}");
             }
         }
@@ -163,7 +186,12 @@ mod tests {
 
     #[test]
     fn triangle_rules_are_exact_to_their_degree() {
-        for (rule, deg) in [(triangle_1(), 1), (triangle_3(), 2), (triangle_6(), 4), (triangle_collapsed(4), 6)] {
+        for (rule, deg) in [
+            (triangle_1(), 1),
+            (triangle_3(), 2),
+            (triangle_6(), 4),
+            (triangle_collapsed(4), 6),
+        ] {
             for i in 0..=deg {
                 for j in 0..=(deg - i) {
                     let q: f64 = rule
@@ -173,7 +201,10 @@ mod tests {
                         .map(|(p, w)| w * p[0].powi(i as i32) * p[1].powi(j as i32))
                         .sum();
                     let e = tri_monomial(i, j);
-                    assert!((q - e).abs() < 1e-12 * e.max(1e-3), "deg {deg} x^{i}y^{j}: {q} vs {e}");
+                    assert!(
+                        (q - e).abs() < 1e-12 * e.max(1e-3),
+                        "deg {deg} x^{i}y^{j}: {q} vs {e}"
+                    );
                 }
             }
         }
@@ -181,7 +212,11 @@ mod tests {
 
     #[test]
     fn tetrahedron_rules_are_exact_to_their_degree() {
-        for (rule, deg) in [(tetrahedron_1(), 1), (tetrahedron_4(), 2), (tetrahedron_collapsed(4), 5)] {
+        for (rule, deg) in [
+            (tetrahedron_1(), 1),
+            (tetrahedron_4(), 2),
+            (tetrahedron_collapsed(4), 5),
+        ] {
             for i in 0..=deg {
                 for j in 0..=(deg - i) {
                     for k in 0..=(deg - i - j) {
@@ -189,7 +224,9 @@ mod tests {
                             .points
                             .iter()
                             .zip(&rule.weights)
-                            .map(|(p, w)| w * p[0].powi(i as i32) * p[1].powi(j as i32) * p[2].powi(k as i32))
+                            .map(|(p, w)| {
+                                w * p[0].powi(i as i32) * p[1].powi(j as i32) * p[2].powi(k as i32)
+                            })
                             .sum();
                         let e = tet_monomial(i, j, k);
                         assert!((q - e).abs() < 1e-12, "deg {deg} {i}{j}{k}: {q} vs {e}");

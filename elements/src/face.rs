@@ -33,9 +33,15 @@ impl FaceIntegrator {
         let rule = match (kinematics, cell) {
             (Kinematics::Solid3D, CellType::Tri3) if extra_order == 0 => quadrature::triangle_3(),
             (Kinematics::Solid3D, CellType::Tri6) if extra_order == 0 => quadrature::triangle_6(),
-            (Kinematics::Solid3D, CellType::Tri3 | CellType::Tri6) => quadrature::triangle_collapsed(3 + extra_order),
-            (Kinematics::Axisymmetric, CellType::Line2) => quadrature::gauss_legendre(2 + extra_order),
-            (Kinematics::Axisymmetric, CellType::Line3) => quadrature::gauss_legendre(3 + extra_order),
+            (Kinematics::Solid3D, CellType::Tri3 | CellType::Tri6) => {
+                quadrature::triangle_collapsed(3 + extra_order)
+            }
+            (Kinematics::Axisymmetric, CellType::Line2) => {
+                quadrature::gauss_legendre(2 + extra_order)
+            }
+            (Kinematics::Axisymmetric, CellType::Line3) => {
+                quadrature::gauss_legendre(3 + extra_order)
+            }
             _ => {
                 return Err(format!(
                     "a {} is not a boundary face of a {} model (3d: 3- or 6-node triangles; axisymmetric: 2- or 3-node lines)",
@@ -55,7 +61,12 @@ impl FaceIntegrator {
                 (n, dn)
             })
             .collect();
-        Ok(Self { cell, kinematics, rule, shapes })
+        Ok(Self {
+            cell,
+            kinematics,
+            rule,
+            shapes,
+        })
     }
 
     pub fn cell_type(&self) -> CellType {
@@ -87,7 +98,10 @@ impl FaceIntegrator {
                         t1[0] * t2[1] - t1[1] * t2[0],
                     ];
                     let len = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
-                    ([sign * m[0] / len, sign * m[1] / len, sign * m[2] / len], len * w)
+                    (
+                        [sign * m[0] / len, sign * m[1] / len, sign * m[2] / len],
+                        len * w,
+                    )
                 }
                 Kinematics::Axisymmetric => {
                     let len = (t1[0] * t1[0] + t1[1] * t1[1]).sqrt();
@@ -98,7 +112,12 @@ impl FaceIntegrator {
                     )
                 }
             };
-            out.push(FacePoint { position: x, normal, area: da, shape: n.clone() });
+            out.push(FacePoint {
+                position: x,
+                normal,
+                area: da,
+                shape: n.clone(),
+            });
         }
         out
     }

@@ -20,7 +20,11 @@ pub struct Field {
 
 impl Field {
     pub fn new(name: impl Into<String>, n_components: usize, values: Vec<f64>) -> Self {
-        Self { name: name.into(), n_components, values }
+        Self {
+            name: name.into(),
+            n_components,
+            values,
+        }
     }
 }
 
@@ -46,11 +50,18 @@ pub struct CellList<'a> {
 
 fn attribute(f: &Field) -> Attribute {
     let elem = match f.n_components {
-        1 => ElementType::Scalars { num_comp: 1, lookup_table: None },
+        1 => ElementType::Scalars {
+            num_comp: 1,
+            lookup_table: None,
+        },
         3 => ElementType::Vectors,
         n => ElementType::Generic(n as u32),
     };
-    Attribute::DataArray(DataArray { name: f.name.clone(), elem, data: IOBuffer::F64(f.values.clone()) })
+    Attribute::DataArray(DataArray {
+        name: f.name.clone(),
+        elem,
+        data: IOBuffer::F64(f.values.clone()),
+    })
 }
 
 /// Writes an unstructured grid with point and cell fields to `path` (atomically).
@@ -80,7 +91,13 @@ pub fn write_vtu(
     }
     let piece = UnstructuredGridPiece {
         points: IOBuffer::F64(points.iter().flatten().copied().collect()),
-        cells: Cells { cell_verts: VertexNumbers::XML { connectivity, offsets }, types },
+        cells: Cells {
+            cell_verts: VertexNumbers::XML {
+                connectivity,
+                offsets,
+            },
+            types,
+        },
         data: Attributes {
             point: point_fields.iter().map(attribute).collect(),
             cell: cell_fields.iter().map(attribute).collect(),
@@ -94,8 +111,10 @@ pub fn write_vtu(
         file_path: None,
     };
     let mut bytes = Vec::new();
-    vtk.write_xml(&mut bytes)
-        .map_err(|e| CoreError::Write { path: path.to_path_buf(), source: std::io::Error::other(e.to_string()) })?;
+    vtk.write_xml(&mut bytes).map_err(|e| CoreError::Write {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(e.to_string()),
+    })?;
     write_atomically(path, &bytes)
 }
 
@@ -122,7 +141,10 @@ pub struct PvdSeries {
 
 impl PvdSeries {
     pub fn new(path: PathBuf) -> Self {
-        Self { path, entries: Vec::new() }
+        Self {
+            path,
+            entries: Vec::new(),
+        }
     }
 
     /// Adds a dataset (file name relative to the `.pvd`) at `time` and rewrites the collection.
@@ -132,7 +154,9 @@ impl PvdSeries {
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n",
         );
         for (t, f) in &self.entries {
-            xml.push_str(&format!("    <DataSet timestep=\"{t:.12e}\" group=\"\" part=\"0\" file=\"{f}\"/>\n"));
+            xml.push_str(&format!(
+                "    <DataSet timestep=\"{t:.12e}\" group=\"\" part=\"0\" file=\"{f}\"/>\n"
+            ));
         }
         xml.push_str("  </Collection>\n</VTKFile>\n");
         write_atomically(&self.path, xml.as_bytes())

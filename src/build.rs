@@ -1,0 +1,434 @@
+//! Turns a case into a core model: mesh, element sets with materials, amplitudes, boundary
+//! conditions and distributed loads.
+
+use crate::case::{Analysis, LoadedCase, MaterialSpec, QuadratureSpec};
+use crate::error::{Result, StictionError};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::sync::Arc;
+use stiction_core::amplitude::Amplitude;
+use stiction_core::element::Kinematics;
+use stiction_core::material::Material;
+use stiction_core::mesh::Mesh;
+use stiction_core::model::{ElementSet, ExternalLoad, Model, Prescribed};
+use stiction_elements::{BoundaryFinder, FaceIntegrator, QuadratureChoice, SolidKernel};
+use stiction_materials::{J2Plasticity, LinearElastic};
+use stiction_meshes::{GeoOptions, mesh_geo, read_msh};
+
+/// A model ready to run, with what the driver reports on.
+pub struct BuiltModel {
+    pub model: Model,
+    /// Groups whose reactions go to `history.csv` (name, nodes).
+    pub reaction_groups: Vec<(String, Vec<usize>)>,
+    pub mesh_path: PathBuf,
+}
+
+/// Reads (or meshes) the case's mesh.
+pub fn load_mesh(case: &LoadedCase) -> Result<(Mesh, PathBuf)> {
+    let spec = &case.case.mesh;
+    let base = case.base_dir();
+    let path = match (&spec.file, &spec.geo) {
+        (Some(file), None) => base.join(file),
+        (None, Some(geo)) => {
+            if !(spec.order == 1 || spec.order == 2) {
+                return Err(case.error("mesh.order", format!("must be 1 or 2, got {}", spec.order)));
+            }
+            if !(spec.size_factor > 0.0) {
+                return Err(case.error("mesh.size_factor", "must be positive"));
+            }
+            let geo = base.join(geo);
+            let options = GeoOptions {
+                dimension: if case.case.analysis == Analysis::Axisymmetric {
+                    2
+                } else {
+                    3
+                },
+                order: spec.order,
+                size_factor: spec.size_factor,
+                parameters: spec
+                    .parameters
+                    .iter()
+                    .map(|(k, v)| (k.clone(), *v))
+                    .collect(),
+            };
+            let cache = geo.parent().unwrap_or(base).join(".stiction-cache");
+            mesh_geo(&geo, &options, &cache)?
+        }
+        _ => {
+            return Err(case.error(
+                "mesh",
+                "give exactly one of 'file' (a .msh) or 'geo' (a .geo meshed by gmsh)",
+            ));
+        }
+    };
+    Ok((read_msh(&path)?, path))
+}
+
+fn material(case: &LoadedCase, name: &str, spec: &MaterialSpec) -> Result<Arc<dyn Material>> {
+    Ok(match spec.model.as_str() {
+        "linear-elastic" => Arc::new(LinearElastic::new(
+            name,
+            spec.youngs_modulus,
+            spec.poissons_ratio,
+        )?),
+        "j2-plasticity" => {
+            let y = spec.yield_stress.ok_or_else(|| {
+                case.error(
+                    format!("materials.{name}.yield_stress"),
+                    "required for model 'j2-plasticity'",
+                )
+            })?;
+            Arc::new(J2Plasticity::new(
+                name,
+                spec.youngs_modulus,
+                spec.poissons_ratio,
+                y,
+                spec.isotropic_hardening,
+                spec.kinematic_hardening,
+            )?)
+        }
+        other => {
+            return Err(case.error(
+                format!("materials.{name}.model"),
+                format!("unknown material model '{other}' (known: linear-elastic, j2-plasticity)"),
+            ));
+        }
+    })
+}
+
+fn component_index(case: &LoadedCase, key: &str, name: &str, kin: Kinematics) -> Result<usize> {
+    let idx = match (kin, name) {
+        (_, "x") | (Kinematics::Axisymmetric, "r") => 0,
+        (_, "y") | (Kinematics::Axisymmetric, "z") => 1,
+        (Kinematics::Solid3D, "z") => 2,
+        _ => {
+            return Err(case.error(
+                key,
+                format!("unknown component '{name}' (3d: x, y, z; axisymmetric: r or x, z or y)"),
+            ));
+        }
+    };
+    Ok(idx)
+}
+
+/// Builds the model of a case.
+pub fn build(case: &LoadedCase) -> Result<BuiltModel> {
+    let (mesh, mesh_path) = load_mesh(case)?;
+    build_with_mesh(case, mesh, mesh_path)
+}
+
+/// Builds the model of a case on an already loaded mesh.
+pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Result<BuiltModel> {
+    let c = &case.case;
+    let kin = match c.analysis {
+        Analysis::ThreeD => Kinematics::Solid3D,
+        Analysis::Axisymmetric => Kinematics::Axisymmetric,
+    };
+    let model_dim = if kin == Kinematics::Solid3D { 3 } else { 2 };
+    if kin == Kinematics::Axisymmetric {
+        let (lo, hi) = mesh.bounding_box();
+        let tol = 1e-9 * (hi[0] - lo[0]).abs().max(hi[1] - lo[1]).max(1e-300);
+        if lo[0] < -tol {
+            return Err(case.error(
+                "analysis",
+                format!(
+                    "axisymmetric models need the mesh in x = r >= 0, but '{}' reaches x = {}",
+                    mesh.source, lo[0]
+                ),
+            ));
+        }
+        if (hi[2] - lo[2]).abs() > tol {
+            return Err(case.error(
+                "analysis",
+                format!(
+                    "axisymmetric models need a planar mesh (z = 0); '{}' is not",
+                    mesh.source
+                ),
+            ));
+        }
+    }
+    let mesh = Arc::new(mesh);
+    let mut model = Model::new(mesh.clone(), kin);
+
+    // Materials and sections.
+    let mut materials = BTreeMap::new();
+    for (name, spec) in &c.materials {
+        materials.insert(name.clone(), material(case, name, spec)?);
+    }
+    if c.sections.is_empty() {
+        return Err(case.error(
+            "sections",
+            "at least one section (group + material) is needed",
+        ));
+    }
+    for (i, s) in c.sections.iter().enumerate() {
+        let key = format!("sections[{i}]");
+        let group = mesh
+            .group(&s.group)
+            .map_err(|e| case.error(format!("{key}.group"), e.to_string()))?;
+        if group.dim != model_dim {
+            return Err(case.error(
+                format!("{key}.group"),
+                format!(
+                    "group '{}' has dimension {}, a {} model needs a dimension-{model_dim} group",
+                    s.group,
+                    group.dim,
+                    kin.name()
+                ),
+            ));
+        }
+        let mat = materials.get(&s.material).ok_or_else(|| {
+            case.error(
+                format!("{key}.material"),
+                format!(
+                    "no material '{}' (defined: {})",
+                    s.material,
+                    materials.keys().cloned().collect::<Vec<_>>().join(", ")
+                ),
+            )
+        })?;
+        let mut any = false;
+        for block in mesh.blocks_of(group) {
+            let choice = match s.quadrature {
+                QuadratureSpec::Standard => QuadratureChoice::Standard,
+                QuadratureSpec::High => QuadratureChoice::High,
+            };
+            let kernel = SolidKernel::new(block.cell_type, kin, choice)
+                .map_err(|m| case.error(format!("{key}.group"), m))?;
+            model.sets.push(ElementSet::new(
+                s.group.clone(),
+                Box::new(kernel),
+                mat.clone(),
+                block.connectivity.clone(),
+            ));
+            any = true;
+        }
+        if !any {
+            return Err(case.error(
+                format!("{key}.group"),
+                format!("group '{}' has no cells", s.group),
+            ));
+        }
+    }
+
+    // Amplitudes.
+    let mut amplitudes: BTreeMap<String, Arc<Amplitude>> = BTreeMap::new();
+    amplitudes.insert("ramp".into(), Arc::new(Amplitude::ramp()));
+    for (name, a) in &c.amplitudes {
+        let amp = Amplitude::new(a.time.clone(), a.value.clone())
+            .map_err(|e| case.error(format!("amplitudes.{name}"), e.to_string()))?;
+        amplitudes.insert(name.clone(), Arc::new(amp));
+    }
+    let amplitude = |key: String, name: &Option<String>| -> Result<Arc<Amplitude>> {
+        let n = name.as_deref().unwrap_or("ramp");
+        amplitudes.get(n).cloned().ok_or_else(|| {
+            case.error(
+                key,
+                format!(
+                    "no amplitude '{n}' (defined: {})",
+                    amplitudes.keys().cloned().collect::<Vec<_>>().join(", ")
+                ),
+            )
+        })
+    };
+
+    // Boundary conditions.
+    let dpn = kin.dofs_per_node();
+    let mut reaction_groups: Vec<(String, Vec<usize>)> = Vec::new();
+    for (i, b) in c.boundary.iter().enumerate() {
+        let key = format!("boundary[{i}]");
+        let group = mesh
+            .group(&b.group)
+            .map_err(|e| case.error(format!("{key}.group"), e.to_string()))?;
+        let nodes = mesh.group_nodes(group);
+        if nodes.is_empty() {
+            return Err(case.error(
+                format!("{key}.group"),
+                format!("group '{}' has no nodes", b.group),
+            ));
+        }
+        let all: Vec<usize> = (0..dpn).collect();
+        let listed = |components: &Option<Vec<String>>| -> Result<Vec<usize>> {
+            match components {
+                None => Ok(all.clone()),
+                Some(list) if list.is_empty() => {
+                    Err(case.error(format!("{key}.components"), "must not be empty"))
+                }
+                Some(list) => list
+                    .iter()
+                    .map(|n| component_index(case, &format!("{key}.components"), n, kin))
+                    .collect(),
+            }
+        };
+        let (components, scale, amp) = match b.kind.as_str() {
+            "fixed" => (listed(&b.components)?, 0.0, amplitudes["ramp"].clone()),
+            "displacement" => {
+                let v = b.value.ok_or_else(|| {
+                    case.error(format!("{key}.value"), "required for type 'displacement'")
+                })?;
+                if !v.is_finite() {
+                    return Err(case.error(format!("{key}.value"), "must be a finite number"));
+                }
+                (
+                    listed(&b.components)?,
+                    v,
+                    amplitude(format!("{key}.amplitude"), &b.amplitude)?,
+                )
+            }
+            "symmetry" => {
+                let n = b.normal.as_deref().ok_or_else(|| {
+                    case.error(
+                        format!("{key}.normal"),
+                        "required for type 'symmetry' (x, y or z)",
+                    )
+                })?;
+                (
+                    vec![component_index(case, &format!("{key}.normal"), n, kin)?],
+                    0.0,
+                    amplitudes["ramp"].clone(),
+                )
+            }
+            other => {
+                return Err(case.error(
+                    format!("{key}.type"),
+                    format!(
+                        "unknown boundary type '{other}' (known: fixed, displacement, symmetry)"
+                    ),
+                ));
+            }
+        };
+        for &node in &nodes {
+            for &comp in &components {
+                model
+                    .prescribe(Prescribed {
+                        dof: node * dpn + comp,
+                        scale,
+                        amplitude: amp.clone(),
+                        source: key.clone(),
+                    })
+                    .map_err(|e| case.error(&key, e.to_string()))?;
+            }
+        }
+        if !reaction_groups.iter().any(|(n, _)| n == &b.group) {
+            reaction_groups.push((b.group.clone(), nodes));
+        }
+    }
+    if kin == Kinematics::Axisymmetric {
+        // u_r = 0 on the axis of symmetry.
+        let (lo, hi) = mesh.bounding_box();
+        let tol = 1e-9 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        let ramp = amplitudes["ramp"].clone();
+        for (n, x) in mesh.nodes.iter().enumerate() {
+            if x[0].abs() <= tol {
+                model.prescribe(Prescribed {
+                    dof: n * dpn,
+                    scale: 0.0,
+                    amplitude: ramp.clone(),
+                    source: "symmetry axis r = 0".into(),
+                })?;
+            }
+        }
+    }
+
+    // Distributed loads.
+    if !c.loads.is_empty() {
+        let finder = BoundaryFinder::new(
+            &mesh.nodes,
+            model.sets.iter().flat_map(|s| {
+                let ct = s.kernel.cell_type();
+                s.connectivity
+                    .chunks_exact(ct.n_nodes())
+                    .map(move |conn| (ct, conn))
+            }),
+        );
+        for (i, l) in c.loads.iter().enumerate() {
+            let key = format!("loads[{i}]");
+            let group = mesh
+                .group(&l.group)
+                .map_err(|e| case.error(format!("{key}.group"), e.to_string()))?;
+            if group.dim + 1 != model_dim {
+                return Err(case.error(
+                    format!("{key}.group"),
+                    format!(
+                        "group '{}' has dimension {}; loads act on boundary groups of dimension {}",
+                        l.group,
+                        group.dim,
+                        model_dim - 1
+                    ),
+                ));
+            }
+            let traction: Box<dyn Fn([f64; 3], [f64; 3]) -> [f64; 3]> = match l.kind.as_str() {
+                "pressure" => {
+                    let p = l.value.ok_or_else(|| {
+                        case.error(format!("{key}.value"), "required for type 'pressure'")
+                    })?;
+                    Box::new(move |_x, n| [-p * n[0], -p * n[1], -p * n[2]])
+                }
+                "traction" => {
+                    let v = l.vector.clone().ok_or_else(|| {
+                        case.error(format!("{key}.vector"), "required for type 'traction'")
+                    })?;
+                    if v.len() != dpn {
+                        return Err(
+                            case.error(format!("{key}.vector"), format!("needs {dpn} components"))
+                        );
+                    }
+                    let t = [v[0], v[1], if dpn == 3 { v[2] } else { 0.0 }];
+                    Box::new(move |_x, _n| t)
+                }
+                other => {
+                    return Err(case.error(
+                        format!("{key}.type"),
+                        format!("unknown load type '{other}' (known: pressure, traction)"),
+                    ));
+                }
+            };
+            let mut vector = vec![0.0; model.n_dofs()];
+            let mut any = false;
+            for block in mesh.blocks_of(group) {
+                let integrator = FaceIntegrator::new(block.cell_type, kin, 0)
+                    .map_err(|m| case.error(format!("{key}.group"), m))?;
+                let nn = block.cell_type.n_nodes();
+                let mut fe = vec![0.0; nn * dpn];
+                for face in block.cells() {
+                    let coords: Vec<[f64; 3]> = face.iter().map(|&n| mesh.nodes[n]).collect();
+                    let pts = integrator.points(&coords, 1.0);
+                    let centroid = pts[0].position;
+                    let nc = block.cell_type.n_corners();
+                    let sign = finder.outward_sign(&face[..nc], centroid, pts[0].normal).ok_or_else(|| {
+                        case.error(format!("{key}.group"), format!("a face of group '{}' is not on the boundary of any section's cells", l.group))
+                    })?;
+                    fe.fill(0.0);
+                    integrator.integrate_traction(&coords, sign, &traction, &mut fe);
+                    for (a, &node) in face.iter().enumerate() {
+                        for k in 0..dpn {
+                            vector[node * dpn + k] += fe[a * dpn + k];
+                        }
+                    }
+                    any = true;
+                }
+            }
+            if !any {
+                return Err(case.error(
+                    format!("{key}.group"),
+                    format!("group '{}' has no faces", l.group),
+                ));
+            }
+            model.loads.push(ExternalLoad {
+                name: l.group.clone(),
+                vector,
+                amplitude: amplitude(format!("{key}.amplitude"), &l.amplitude)?,
+            });
+        }
+    }
+
+    model.finalize().map_err(|e| StictionError::Case {
+        path: case.path.clone(),
+        message: e.to_string(),
+    })?;
+    Ok(BuiltModel {
+        model,
+        reaction_groups,
+        mesh_path,
+    })
+}

@@ -1,0 +1,288 @@
+//! The case file: a TOML description of a problem. Unknown keys are rejected with their path;
+//! every default is stated here and in `stiction run --help`.
+
+pub mod overrides;
+
+use crate::error::{Result, StictionError};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// A whole case.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    /// Name of the case (default: the file stem); output goes to `out/<name>/` by default.
+    pub name: Option<String>,
+    /// "3d" (default) or "axisymmetric" (r = x, z = y, mesh in the x-y plane with x >= 0).
+    #[serde(default)]
+    pub analysis: Analysis,
+    pub mesh: MeshSpec,
+    /// Materials by name.
+    pub materials: BTreeMap<String, MaterialSpec>,
+    /// Which material each volume group uses.
+    pub sections: Vec<SectionSpec>,
+    /// Named piecewise-linear amplitudes; "ramp" (0 -> 1 over t in [0, 1]) always exists.
+    #[serde(default)]
+    pub amplitudes: BTreeMap<String, AmplitudeSpec>,
+    #[serde(default)]
+    pub boundary: Vec<BoundarySpec>,
+    #[serde(default)]
+    pub loads: Vec<LoadSpec>,
+    pub steps: Vec<StepSpec>,
+    #[serde(default)]
+    pub solver: SolverSpec,
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Analysis {
+    #[default]
+    #[serde(rename = "3d")]
+    ThreeD,
+    Axisymmetric,
+}
+
+/// The mesh: a `.msh` file, or a `.geo` file meshed by gmsh (cached).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// gmsh MSH 4.1 file, relative to the case file.
+    pub file: Option<PathBuf>,
+    /// gmsh `.geo` file, relative to the case file (meshed with `gmsh`, cached in `.stiction-cache/`
+    /// next to the `.geo`).
+    pub geo: Option<PathBuf>,
+    /// Element order for `.geo` meshing (default 2).
+    #[serde(default = "default_order")]
+    pub order: usize,
+    /// gmsh `-clscale` factor for `.geo` meshing (default 1).
+    #[serde(default = "one")]
+    pub size_factor: f64,
+    /// Numbers passed to the `.geo` with `-setnumber`.
+    #[serde(default)]
+    pub parameters: BTreeMap<String, f64>,
+}
+
+fn default_order() -> usize {
+    2
+}
+fn one() -> f64 {
+    1.0
+}
+
+/// A material. `model` selects the law; the other keys are its parameters.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// "linear-elastic" or "j2-plasticity".
+    pub model: String,
+    pub youngs_modulus: f64,
+    pub poissons_ratio: f64,
+    /// J2: initial yield stress.
+    pub yield_stress: Option<f64>,
+    /// J2: linear isotropic hardening modulus (default 0).
+    #[serde(default)]
+    pub isotropic_hardening: f64,
+    /// J2: linear kinematic hardening modulus (default 0).
+    #[serde(default)]
+    pub kinematic_hardening: f64,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SectionSpec {
+    /// Physical group (name or tag) of volume cells (3d) or surface cells (axisymmetric).
+    pub group: String,
+    pub material: String,
+    /// "standard" (default: tet10 4 points like C3D10) or "high".
+    #[serde(default)]
+    pub quadrature: QuadratureSpec,
+}
+
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum QuadratureSpec {
+    #[default]
+    Standard,
+    High,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AmplitudeSpec {
+    pub time: Vec<f64>,
+    pub value: Vec<f64>,
+}
+
+/// A boundary condition on the nodes of a physical group.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundarySpec {
+    pub group: String,
+    /// "fixed" (u = 0), "displacement" (u = value * amplitude(t)) or "symmetry" (u . n = 0 on a
+    /// coordinate plane with normal `normal`).
+    #[serde(rename = "type")]
+    pub kind: String,
+    /// Components: any of "x", "y", "z" ("r", "z" in axisymmetric models). Default: all.
+    pub components: Option<Vec<String>>,
+    /// Displacement value (type "displacement").
+    pub value: Option<f64>,
+    /// Amplitude name (default "ramp").
+    pub amplitude: Option<String>,
+    /// Symmetry plane normal: "x", "y" or "z" (type "symmetry").
+    pub normal: Option<String>,
+}
+
+/// A distributed load on a boundary group.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    pub group: String,
+    /// "pressure" (value acts against the outward normal) or "traction" (vector per area).
+    #[serde(rename = "type")]
+    pub kind: String,
+    pub value: Option<f64>,
+    pub vector: Option<Vec<f64>>,
+    pub amplitude: Option<String>,
+}
+
+/// A step: pseudo-time runs from the end of the previous step to `end_time`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StepSpec {
+    pub name: Option<String>,
+    pub end_time: f64,
+    /// First increment (default: a tenth of the step).
+    pub initial_increment: Option<f64>,
+    /// Smallest increment before the run gives up (default: 1e-6 of the step).
+    pub min_increment: Option<f64>,
+    /// Largest increment (default: the step).
+    pub max_increment: Option<f64>,
+    /// Write VTK every this many converged increments (default 1; 0 = only at the step end).
+    #[serde(default = "one_usize")]
+    pub output_every: usize,
+}
+
+fn one_usize() -> usize {
+    1
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// Newton iterations per increment (default 25).
+    #[serde(default = "default_iterations")]
+    pub max_iterations: usize,
+    /// Relative residual tolerance (default 1e-8).
+    #[serde(default = "default_tol_r")]
+    pub tol_residual: f64,
+    /// Relative displacement-correction tolerance (default 1e-6).
+    #[serde(default = "default_tol_u")]
+    pub tol_displacement: f64,
+    /// Backtracking line search (default true).
+    #[serde(default = "yes")]
+    pub line_search: bool,
+    /// Assembly threads; 0 = all cores (default 0).
+    #[serde(default)]
+    pub threads: usize,
+    /// Increment cut factor after a failure (default 0.25).
+    #[serde(default = "default_cut")]
+    pub cut_factor: f64,
+    /// Increment growth factor after an easy increment (default 1.5).
+    #[serde(default = "default_growth")]
+    pub growth_factor: f64,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        toml::from_str("").expect("solver defaults")
+    }
+}
+
+fn default_iterations() -> usize {
+    25
+}
+fn default_tol_r() -> f64 {
+    1e-8
+}
+fn default_tol_u() -> f64 {
+    1e-6
+}
+fn yes() -> bool {
+    true
+}
+fn default_cut() -> f64 {
+    0.25
+}
+fn default_growth() -> f64 {
+    1.5
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Output directory (default `out/<name>`, relative to the working directory).
+    pub directory: Option<PathBuf>,
+    /// Write VTK files (default true).
+    #[serde(default = "yes")]
+    pub vtk: bool,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        toml::from_str("").expect("output defaults")
+    }
+}
+
+/// A parsed case with the file it came from.
+#[derive(Debug, Clone)]
+pub struct LoadedCase {
+    pub case: Case,
+    pub path: PathBuf,
+    pub name: String,
+}
+
+impl LoadedCase {
+    /// Directory that relative paths in the case are relative to.
+    pub fn base_dir(&self) -> &Path {
+        self.path.parent().unwrap_or(Path::new("."))
+    }
+    pub fn error(&self, key: impl Into<String>, message: impl Into<String>) -> StictionError {
+        StictionError::CaseKey {
+            path: self.path.clone(),
+            key: key.into(),
+            message: message.into(),
+        }
+    }
+}
+
+/// Reads a case file, applies `--set key=value` overrides and checks the schema.
+pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase> {
+    let bad = |message: String| StictionError::Case {
+        path: path.to_path_buf(),
+        message,
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| bad(format!("cannot read it: {e}")))?;
+    let case: Case = if sets.is_empty() {
+        toml::from_str(&text).map_err(|e| bad(e.to_string()))?
+    } else {
+        let mut value: toml::Value = toml::from_str(&text).map_err(|e| bad(e.to_string()))?;
+        for set in sets {
+            overrides::apply(&mut value, set).map_err(|m| bad(format!("--set {set}: {m}")))?;
+        }
+        Case::deserialize(value).map_err(|e| bad(format!("{e} (after --set overrides)")))?
+    };
+    let name = case.name.clone().unwrap_or_else(|| {
+        path.file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("case")
+            .to_string()
+    });
+    Ok(LoadedCase {
+        case,
+        path: path.to_path_buf(),
+        name,
+    })
+}

@@ -1,0 +1,43 @@
+//! The error type of the `stiction` crate and program. Input errors exit with status 2,
+//! failed runs (no convergence after cutting) with status 1.
+
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum StictionError {
+    #[error("case file '{path}': {message}")]
+    Case { path: PathBuf, message: String },
+    #[error("case file '{path}', key '{key}': {message}")]
+    CaseKey {
+        path: PathBuf,
+        key: String,
+        message: String,
+    },
+    #[error(transparent)]
+    Mesh(#[from] stiction_meshes::MeshError),
+    #[error(transparent)]
+    Materials(#[from] stiction_materials::MaterialsError),
+    #[error(transparent)]
+    Core(#[from] stiction_core::CoreError),
+    #[error(
+        "the run stopped at t = {time:.6}: {message} (every converged step so far is in '{out}')"
+    )]
+    RunFailed {
+        time: f64,
+        message: String,
+        out: PathBuf,
+    },
+}
+
+impl StictionError {
+    /// Exit status: 2 for bad input, 1 for a run that failed after starting.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            StictionError::RunFailed { .. } => 1,
+            StictionError::Core(stiction_core::CoreError::Write { .. }) => 1,
+            _ => 2,
+        }
+    }
+}
+
+pub type Result<T> = std::result::Result<T, StictionError>;

@@ -1,0 +1,340 @@
+//! The run driver: steps through pseudo-time with cut-and-grow incrementation, commits each
+//! converged increment, appends it to `history.csv`, writes VTK step by step, and writes
+//! `summary.json` at the end (also after a failure).
+
+use crate::build::{BuiltModel, build};
+use crate::case::LoadedCase;
+use crate::error::{Result, StictionError};
+use crate::fields::{solid_cells, solid_fields};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use stiction_core::linear_solver::SparseSolver;
+use stiction_core::newton::{Incrementation, NewtonSettings, solve_increment};
+use stiction_core::output::vtk::{CellList, PvdSeries, write_vtu};
+use stiction_core::output::{HistoryWriter, write_atomically};
+
+/// Options of `stiction run` beyond the case file.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Output directory (overrides the case's `output.directory`).
+    pub out: Option<PathBuf>,
+    /// Show progress (normally: stderr is a terminal).
+    pub progress: bool,
+}
+
+/// What `summary.json` holds.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunSummary {
+    pub case: String,
+    pub status: String,
+    pub message: Option<String>,
+    pub final_time: f64,
+    pub increments: usize,
+    pub cut_increments: usize,
+    pub newton_iterations: usize,
+    pub n_nodes: usize,
+    pub n_cells: usize,
+    pub n_free_dofs: usize,
+    pub nnz: usize,
+    pub factor_nnz: usize,
+    pub wall_seconds: f64,
+    pub assembly_seconds: f64,
+    pub factorization_seconds: f64,
+    pub solve_seconds: f64,
+    pub plastic_dissipation: f64,
+    pub output_directory: PathBuf,
+}
+
+/// Output directory of a case: `--out`, else `output.directory`, else `out/<name>`.
+pub fn output_directory(case: &LoadedCase, options: &RunOptions) -> PathBuf {
+    options
+        .out
+        .clone()
+        .or_else(|| case.case.output.directory.clone())
+        .unwrap_or_else(|| PathBuf::from("out").join(&case.name))
+}
+
+/// Builds and runs a case.
+pub fn run(case: &LoadedCase, options: &RunOptions) -> Result<RunSummary> {
+    let mut built = build(case)?;
+    run_model(case, &mut built, options)
+}
+
+fn settings(case: &LoadedCase) -> Result<NewtonSettings> {
+    let s = &case.case.solver;
+    if !(s.tol_residual > 0.0) || !(s.tol_displacement > 0.0) || s.max_iterations == 0 {
+        return Err(case.error(
+            "solver",
+            "tolerances must be positive and max_iterations at least 1",
+        ));
+    }
+    Ok(NewtonSettings {
+        max_iterations: s.max_iterations,
+        tol_residual: s.tol_residual,
+        tol_displacement: s.tol_displacement,
+        line_search: s.line_search,
+        ..NewtonSettings::default()
+    })
+}
+
+/// Runs an already built model.
+/// The model keeps the final converged state for inspection.
+pub fn run_model(
+    case: &LoadedCase,
+    built: &mut BuiltModel,
+    options: &RunOptions,
+) -> Result<RunSummary> {
+    let wall = Instant::now();
+    let BuiltModel {
+        model,
+        reaction_groups,
+        ..
+    } = built;
+    let reaction_groups = &*reaction_groups;
+    let newton = settings(case)?;
+    if case.case.steps.is_empty() {
+        return Err(case.error("steps", "at least one step is needed"));
+    }
+    let mut previous_end = 0.0;
+    let mut incrementations = Vec::new();
+    for (i, s) in case.case.steps.iter().enumerate() {
+        let span = s.end_time - previous_end;
+        if !(span > 0.0) {
+            return Err(case.error(
+                format!("steps[{i}].end_time"),
+                format!("must be after the previous step's end ({previous_end})"),
+            ));
+        }
+        let inc = Incrementation {
+            initial: s.initial_increment.unwrap_or(0.1 * span).min(span),
+            minimum: s.min_increment.unwrap_or(1e-6 * span),
+            maximum: s.max_increment.unwrap_or(span),
+            cut_factor: case.case.solver.cut_factor,
+            growth_factor: case.case.solver.growth_factor,
+            easy_iterations: 5,
+        };
+        inc.validate()
+            .map_err(|e| case.error(format!("steps[{i}]"), e.to_string()))?;
+        incrementations.push(inc);
+        previous_end = s.end_time;
+    }
+    if case.case.solver.threads > 0 {
+        // Ignored if a global pool exists already (e.g. several runs in one process).
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(case.case.solver.threads)
+            .build_global();
+    }
+
+    let out = output_directory(case, options);
+    std::fs::create_dir_all(&out).map_err(|source| stiction_core::CoreError::Write {
+        path: out.clone(),
+        source,
+    })?;
+    let dpn = model.dofs_per_node();
+    let comp = |k: usize| {
+        if model.kinematics == stiction_core::element::Kinematics::Axisymmetric {
+            ["r", "z"][k]
+        } else {
+            ["x", "y", "z"][k]
+        }
+    };
+    let mut columns: Vec<String> = ["step", "increment", "time", "iterations"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    for (g, _) in reaction_groups {
+        for k in 0..dpn {
+            columns.push(format!("reaction_{g}_{}", comp(k)));
+        }
+    }
+    columns.push("plastic_dissipation".into());
+    let contribution_columns: Vec<String> = model
+        .contributions
+        .iter()
+        .flat_map(|c| c.history().into_iter().map(|(n, _)| n))
+        .collect();
+    columns.extend(contribution_columns);
+    let mut history = HistoryWriter::create(&out.join("history.csv"), columns)?;
+    let mut pvd = PvdSeries::new(out.join(format!("{}.pvd", case.name)));
+    let write_vtk = case.case.output.vtk;
+
+    let mut solver = SparseSolver::new(model.pattern())?;
+    let mut summary = RunSummary {
+        case: case.name.clone(),
+        status: "running".into(),
+        message: None,
+        final_time: 0.0,
+        increments: 0,
+        cut_increments: 0,
+        newton_iterations: 0,
+        n_nodes: model.mesh.nodes.len(),
+        n_cells: model.sets.iter().map(|s| s.n_cells()).sum(),
+        n_free_dofs: model.n_free(),
+        nnz: model.pattern().nnz(),
+        factor_nnz: solver.factor_nnz(),
+        wall_seconds: 0.0,
+        assembly_seconds: 0.0,
+        factorization_seconds: 0.0,
+        solve_seconds: 0.0,
+        plastic_dissipation: 0.0,
+        output_directory: out.clone(),
+    };
+    let bar = if options.progress {
+        let b = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::stderr());
+        b.set_style(
+            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:30} {msg}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        b
+    } else {
+        ProgressBar::hidden()
+    };
+    let t_end = previous_end;
+
+    // Initial state (t = 0) so the series starts undeformed.
+    model.apply_time(0.0);
+    model.assemble(false)?;
+    model.commit();
+    let mut frame = 0usize;
+    let record = |model: &stiction_core::model::Model,
+                  history: &mut HistoryWriter,
+                  step: usize,
+                  inc: usize,
+                  its: usize|
+     -> Result<()> {
+        let mut row = vec![step as f64, inc as f64, model.time, its as f64];
+        for (_, nodes) in reaction_groups {
+            row.extend(model.reaction(nodes));
+        }
+        row.push(model.dissipation());
+        for c in &model.contributions {
+            row.extend(c.history().into_iter().map(|(_, v)| v));
+        }
+        history.append(&row)?;
+        Ok(())
+    };
+    let vtk_frame =
+        |model: &stiction_core::model::Model, pvd: &mut PvdSeries, frame: usize| -> Result<()> {
+            let file = format!("{}_{frame:05}.vtu", case.name);
+            let (point, cell) = solid_fields(model);
+            let cells = solid_cells(model);
+            let lists: Vec<CellList> = cells
+                .iter()
+                .map(|(t, c)| CellList {
+                    cell_type: *t,
+                    connectivity: c,
+                })
+                .collect();
+            write_vtu(&out.join(&file), &model.mesh.nodes, &lists, &point, &cell)?;
+            pvd.add(model.time, &file)?;
+            Ok(())
+        };
+    record(model, &mut history, 0, 0, 0)?;
+    if write_vtk {
+        vtk_frame(model, &mut pvd, frame)?;
+        frame += 1;
+    }
+
+    let mut t = 0.0;
+    let mut failure: Option<(f64, String)> = None;
+    'steps: for (si, (step, inc)) in case.case.steps.iter().zip(&incrementations).enumerate() {
+        let mut dt = inc.initial;
+        let mut since_output = 0;
+        let step_name = step
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("step {}", si + 1));
+        while t < step.end_time - 1e-12 * t_end {
+            let mut target = (t + dt).min(step.end_time);
+            // land on amplitude breakpoints so load reversals are exact
+            for a in model
+                .prescribed()
+                .iter()
+                .map(|p| p.amplitude.clone())
+                .chain(model.loads.iter().map(|l| l.amplitude.clone()))
+            {
+                if let Some(b) = a.breakpoints_between(t + 1e-12 * t_end, target).next() {
+                    target = target.min(b);
+                }
+            }
+            if step.end_time - target < 1e-3 * dt {
+                target = step.end_time;
+            }
+            let u_norm = model.displacement.iter().map(|x| x * x).sum::<f64>().sqrt();
+            match solve_increment(model, &mut solver, target, &newton, u_norm) {
+                Ok(report) => {
+                    model.commit();
+                    t = target;
+                    summary.increments += 1;
+                    summary.newton_iterations += report.iterations;
+                    summary.assembly_seconds += report.assembly_seconds;
+                    summary.factorization_seconds += report.factorization_seconds;
+                    summary.solve_seconds += report.solve_seconds;
+                    record(
+                        model,
+                        &mut history,
+                        si + 1,
+                        summary.increments,
+                        report.iterations,
+                    )?;
+                    since_output += 1;
+                    let at_end = t >= step.end_time - 1e-12 * t_end;
+                    if write_vtk
+                        && ((step.output_every > 0 && since_output >= step.output_every) || at_end)
+                    {
+                        vtk_frame(model, &mut pvd, frame)?;
+                        frame += 1;
+                        since_output = 0;
+                    }
+                    bar.set_position((1000.0 * t / t_end) as u64);
+                    let last = report.residual_norms.last().copied().unwrap_or(0.0);
+                    bar.set_message(format!(
+                        "{step_name}: t = {t:.4} dt = {dt:.2e}, {} Newton its, |r| = {last:.2e}",
+                        report.iterations
+                    ));
+                    if report.iterations <= inc.easy_iterations {
+                        dt = (dt * inc.growth_factor).min(inc.maximum);
+                    }
+                }
+                Err(e) => {
+                    model.rollback();
+                    summary.cut_increments += 1;
+                    dt *= inc.cut_factor;
+                    bar.set_message(format!(
+                        "{step_name}: cut to dt = {dt:.2e} at t = {t:.4} ({e})"
+                    ));
+                    if dt < inc.minimum {
+                        failure = Some((
+                            t,
+                            format!("increment below the minimum {:.3e} after: {e}", inc.minimum),
+                        ));
+                        break 'steps;
+                    }
+                }
+            }
+        }
+    }
+    bar.finish_and_clear();
+    summary.final_time = t;
+    summary.plastic_dissipation = model.dissipation();
+    summary.wall_seconds = wall.elapsed().as_secs_f64();
+    summary.status = if failure.is_some() {
+        "failed".into()
+    } else {
+        "completed".into()
+    };
+    summary.message = failure.as_ref().map(|f| f.1.clone());
+    write_summary(&out, &summary)?;
+    if let Some((time, message)) = failure {
+        return Err(StictionError::RunFailed { time, message, out });
+    }
+    Ok(summary)
+}
+
+fn write_summary(out: &Path, summary: &RunSummary) -> Result<()> {
+    let json = serde_json::to_string_pretty(summary).expect("summary serializes");
+    write_atomically(&out.join("summary.json"), json.as_bytes())?;
+    Ok(())
+}
