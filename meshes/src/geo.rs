@@ -53,7 +53,11 @@ pub fn mesh_geo(geo: &Path, options: &GeoOptions, cache_dir: &Path) -> Result<Pa
         path: cache_dir.to_path_buf(),
         source,
     })?;
-    let tmp = out.with_extension("msh.partial");
+    // A temporary name unique to this process and call, so concurrent runs never share it;
+    // the rename into place is atomic.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let tmp = out.with_extension(format!("partial-{}-{call}.msh", std::process::id()));
     let mut cmd = Command::new("gmsh");
     cmd.arg(geo)
         .arg(format!("-{}", options.dimension))

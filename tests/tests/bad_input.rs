@@ -1,0 +1,170 @@
+//! Bad input gives errors that name the file, the key or line, and what was expected, with exit
+//! status 2, never a panic.
+
+use std::path::PathBuf;
+use stiction::case;
+use stiction_tests::workspace_root;
+
+fn scratch(name: &str, text: &str) -> PathBuf {
+    let dir = workspace_root()
+        .join("target")
+        .join("test-out")
+        .join("bad-input");
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn base_case(mesh_line: &str) -> String {
+    format!(
+        r#"
+[mesh]
+{mesh_line}
+[materials.steel]
+model = "linear-elastic"
+youngs_modulus = 200.0
+poissons_ratio = 0.3
+[[sections]]
+group = "body"
+material = "steel"
+[[boundary]]
+group = "clamp"
+type = "fixed"
+[[steps]]
+end_time = 1.0
+"#
+    )
+}
+
+fn cantilever_geo() -> String {
+    format!(
+        "geo = \"{}\"",
+        workspace_root()
+            .join("cases/validation/cantilever.geo")
+            .display()
+    )
+}
+
+/// Loads and builds; returns the error text and its exit code.
+fn failure(path: &PathBuf, sets: &[&str]) -> (String, i32) {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let err = match case::load(path, &sets) {
+        Err(e) => e,
+        Ok(c) => match stiction::build::build(&c) {
+            Err(e) => e,
+            Ok(_) => panic!("{} was accepted", path.display()),
+        },
+    };
+    (err.to_string(), err.exit_code())
+}
+
+#[test]
+fn unknown_key_names_the_key_and_line() {
+    let p = scratch(
+        "unknown-key.toml",
+        &base_case(&cantilever_geo()).replace("poissons_ratio", "poisson_ratio"),
+    );
+    let (msg, code) = failure(&p, &[]);
+    assert_eq!(code, 2);
+    assert!(
+        msg.contains("unknown-key.toml") && msg.contains("poisson_ratio") && msg.contains("line"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn unknown_key_from_set_is_rejected() {
+    let p = scratch("set-key.toml", &base_case(&cantilever_geo()));
+    let (msg, code) = failure(&p, &["solver.max_iteration=3"]);
+    assert_eq!(code, 2);
+    assert!(
+        msg.contains("max_iteration") && msg.contains("--set"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn missing_group_lists_the_known_groups() {
+    let p = scratch(
+        "missing-group.toml",
+        &base_case(&cantilever_geo()).replace("group = \"clamp\"", "group = \"clmp\""),
+    );
+    let (msg, code) = failure(&p, &[]);
+    assert_eq!(code, 2);
+    assert!(
+        msg.contains("boundary[0].group") && msg.contains("'clmp'") && msg.contains("'clamp'"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn non_positive_modulus_names_the_parameter() {
+    let p = scratch(
+        "modulus.toml",
+        &base_case(&cantilever_geo()).replace("youngs_modulus = 200.0", "youngs_modulus = -1.0"),
+    );
+    let (msg, code) = failure(&p, &[]);
+    assert_eq!(code, 2);
+    assert!(
+        msg.contains("youngs_modulus") && msg.contains("positive"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn missing_mesh_file_names_the_file() {
+    let p = scratch(
+        "missing-mesh.toml",
+        &base_case("file = \"does-not-exist.msh\""),
+    );
+    let (msg, code) = failure(&p, &[]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("does-not-exist.msh"), "{msg}");
+}
+
+#[test]
+fn wrong_element_type_for_the_analysis() {
+    // a 3D tet mesh used in an axisymmetric analysis: the mesh is not planar
+    let p = scratch(
+        "wrong-analysis.toml",
+        &format!(
+            "analysis = \"axisymmetric\"\n{}",
+            base_case(&cantilever_geo())
+        ),
+    );
+    let (msg, code) = failure(&p, &[]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("axisymmetric"), "{msg}");
+}
+
+#[test]
+fn msh22_and_malformed_files_are_explained() {
+    let dir = workspace_root()
+        .join("target")
+        .join("test-out")
+        .join("bad-input");
+    std::fs::create_dir_all(&dir).unwrap();
+    let old = dir.join("old.msh");
+    std::fs::write(&old, "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n").unwrap();
+    let e = stiction_meshes::read_msh(&old).unwrap_err().to_string();
+    assert!(
+        e.contains("old.msh") && e.contains("2.2") && e.contains("-format msh41"),
+        "{e}"
+    );
+    let junk = dir.join("junk.msh");
+    std::fs::write(
+        &junk,
+        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1\n",
+    )
+    .unwrap();
+    let e = stiction_meshes::read_msh(&junk).unwrap_err().to_string();
+    assert!(e.contains("junk.msh"), "{e}");
+    let none = dir.join("not-a-mesh.msh");
+    std::fs::write(&none, "hello").unwrap();
+    let e = stiction_meshes::read_msh(&none).unwrap_err().to_string();
+    assert!(
+        e.contains("not-a-mesh.msh") && e.contains("$MeshFormat"),
+        "{e}"
+    );
+}
