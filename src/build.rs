@@ -23,6 +23,25 @@ pub struct BuiltModel {
     pub mesh_path: PathBuf,
 }
 
+/// Mean corner-to-corner edge length of the faces of a group (None if it has none).
+fn mean_edge_length(mesh: &Mesh, group: &stiction_core::mesh::PhysicalGroup) -> Option<f64> {
+    let (mut sum, mut count) = (0.0, 0usize);
+    for block in mesh.blocks_of(group) {
+        let nc = block.cell_type.n_corners();
+        for face in block.cells() {
+            for a in 0..nc {
+                let (p, q) = (mesh.nodes[face[a]], mesh.nodes[face[(a + 1) % nc]]);
+                sum += ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
+                count += 1;
+                if nc == 2 {
+                    break;
+                }
+            }
+        }
+    }
+    (count > 0).then(|| sum / count as f64)
+}
+
 /// Reads (or meshes) the case's mesh.
 pub fn load_mesh(case: &LoadedCase) -> Result<(Mesh, PathBuf)> {
     let spec = &case.case.mesh;
@@ -38,27 +57,16 @@ pub fn load_mesh(case: &LoadedCase) -> Result<(Mesh, PathBuf)> {
             }
             let geo = base.join(geo);
             let options = GeoOptions {
-                dimension: if case.case.analysis == Analysis::Axisymmetric {
-                    2
-                } else {
-                    3
-                },
+                dimension: if case.case.analysis == Analysis::Axisymmetric { 2 } else { 3 },
                 order: spec.order,
                 size_factor: spec.size_factor,
-                parameters: spec
-                    .parameters
-                    .iter()
-                    .map(|(k, v)| (k.clone(), *v))
-                    .collect(),
+                parameters: spec.parameters.iter().map(|(k, v)| (k.clone(), *v)).collect(),
             };
             let cache = geo.parent().unwrap_or(base).join(".stiction-cache");
             mesh_geo(&geo, &options, &cache)?
         }
         _ => {
-            return Err(case.error(
-                "mesh",
-                "give exactly one of 'file' (a .msh) or 'geo' (a .geo meshed by gmsh)",
-            ));
+            return Err(case.error("mesh", "give exactly one of 'file' (a .msh) or 'geo' (a .geo meshed by gmsh)"));
         }
     };
     Ok((read_msh(&path)?, path))
@@ -66,17 +74,10 @@ pub fn load_mesh(case: &LoadedCase) -> Result<(Mesh, PathBuf)> {
 
 fn material(case: &LoadedCase, name: &str, spec: &MaterialSpec) -> Result<Arc<dyn Material>> {
     Ok(match spec.model.as_str() {
-        "linear-elastic" => Arc::new(LinearElastic::new(
-            name,
-            spec.youngs_modulus,
-            spec.poissons_ratio,
-        )?),
+        "linear-elastic" => Arc::new(LinearElastic::new(name, spec.youngs_modulus, spec.poissons_ratio)?),
         "j2-plasticity" => {
             let y = spec.yield_stress.ok_or_else(|| {
-                case.error(
-                    format!("materials.{name}.yield_stress"),
-                    "required for model 'j2-plasticity'",
-                )
+                case.error(format!("materials.{name}.yield_stress"), "required for model 'j2-plasticity'")
             })?;
             Arc::new(J2Plasticity::new(
                 name,
@@ -102,10 +103,9 @@ fn component_index(case: &LoadedCase, key: &str, name: &str, kin: Kinematics) ->
         (_, "y") | (Kinematics::Axisymmetric, "z") => 1,
         (Kinematics::Solid3D, "z") => 2,
         _ => {
-            return Err(case.error(
-                key,
-                format!("unknown component '{name}' (3d: x, y, z; axisymmetric: r or x, z or y)"),
-            ));
+            return Err(
+                case.error(key, format!("unknown component '{name}' (3d: x, y, z; axisymmetric: r or x, z or y)"))
+            );
         }
     };
     Ok(idx)
@@ -131,19 +131,13 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
         if lo[0] < -tol {
             return Err(case.error(
                 "analysis",
-                format!(
-                    "axisymmetric models need the mesh in x = r >= 0, but '{}' reaches x = {}",
-                    mesh.source, lo[0]
-                ),
+                format!("axisymmetric models need the mesh in x = r >= 0, but '{}' reaches x = {}", mesh.source, lo[0]),
             ));
         }
         if (hi[2] - lo[2]).abs() > tol {
             return Err(case.error(
                 "analysis",
-                format!(
-                    "axisymmetric models need a planar mesh (z = 0); '{}' is not",
-                    mesh.source
-                ),
+                format!("axisymmetric models need a planar mesh (z = 0); '{}' is not", mesh.source),
             ));
         }
     }
@@ -156,16 +150,11 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
         materials.insert(name.clone(), material(case, name, spec)?);
     }
     if c.sections.is_empty() {
-        return Err(case.error(
-            "sections",
-            "at least one section (group + material) is needed",
-        ));
+        return Err(case.error("sections", "at least one section (group + material) is needed"));
     }
     for (i, s) in c.sections.iter().enumerate() {
         let key = format!("sections[{i}]");
-        let group = mesh
-            .group(&s.group)
-            .map_err(|e| case.error(format!("{key}.group"), e.to_string()))?;
+        let group = mesh.group(&s.group).map_err(|e| case.error(format!("{key}.group"), e.to_string()))?;
         if group.dim != model_dim {
             return Err(case.error(
                 format!("{key}.group"),
@@ -193,8 +182,8 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
                 QuadratureSpec::Standard => QuadratureChoice::Standard,
                 QuadratureSpec::High => QuadratureChoice::High,
             };
-            let kernel = SolidKernel::new(block.cell_type, kin, choice)
-                .map_err(|m| case.error(format!("{key}.group"), m))?;
+            let kernel =
+                SolidKernel::new(block.cell_type, kin, choice).map_err(|m| case.error(format!("{key}.group"), m))?;
             model.sets.push(ElementSet::new(
                 s.group.clone(),
                 Box::new(kernel),
@@ -204,10 +193,7 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
             any = true;
         }
         if !any {
-            return Err(case.error(
-                format!("{key}.group"),
-                format!("group '{}' has no cells", s.group),
-            ));
+            return Err(case.error(format!("{key}.group"), format!("group '{}' has no cells", s.group)));
         }
     }
 
@@ -224,10 +210,7 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
         amplitudes.get(n).cloned().ok_or_else(|| {
             case.error(
                 key,
-                format!(
-                    "no amplitude '{n}' (defined: {})",
-                    amplitudes.keys().cloned().collect::<Vec<_>>().join(", ")
-                ),
+                format!("no amplitude '{n}' (defined: {})", amplitudes.keys().cloned().collect::<Vec<_>>().join(", ")),
             )
         })
     };
@@ -237,63 +220,42 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
     let mut reaction_groups: Vec<(String, Vec<usize>)> = Vec::new();
     for (i, b) in c.boundary.iter().enumerate() {
         let key = format!("boundary[{i}]");
-        let group = mesh
-            .group(&b.group)
-            .map_err(|e| case.error(format!("{key}.group"), e.to_string()))?;
+        let group = mesh.group(&b.group).map_err(|e| case.error(format!("{key}.group"), e.to_string()))?;
         let nodes = mesh.group_nodes(group);
         if nodes.is_empty() {
-            return Err(case.error(
-                format!("{key}.group"),
-                format!("group '{}' has no nodes", b.group),
-            ));
+            return Err(case.error(format!("{key}.group"), format!("group '{}' has no nodes", b.group)));
         }
         let all: Vec<usize> = (0..dpn).collect();
         let listed = |components: &Option<Vec<String>>| -> Result<Vec<usize>> {
             match components {
                 None => Ok(all.clone()),
-                Some(list) if list.is_empty() => {
-                    Err(case.error(format!("{key}.components"), "must not be empty"))
+                Some(list) if list.is_empty() => Err(case.error(format!("{key}.components"), "must not be empty")),
+                Some(list) => {
+                    list.iter().map(|n| component_index(case, &format!("{key}.components"), n, kin)).collect()
                 }
-                Some(list) => list
-                    .iter()
-                    .map(|n| component_index(case, &format!("{key}.components"), n, kin))
-                    .collect(),
             }
         };
         let (components, scale, amp) = match b.kind.as_str() {
             "fixed" => (listed(&b.components)?, 0.0, amplitudes["ramp"].clone()),
             "displacement" => {
-                let v = b.value.ok_or_else(|| {
-                    case.error(format!("{key}.value"), "required for type 'displacement'")
-                })?;
+                let v =
+                    b.value.ok_or_else(|| case.error(format!("{key}.value"), "required for type 'displacement'"))?;
                 if !v.is_finite() {
                     return Err(case.error(format!("{key}.value"), "must be a finite number"));
                 }
-                (
-                    listed(&b.components)?,
-                    v,
-                    amplitude(format!("{key}.amplitude"), &b.amplitude)?,
-                )
+                (listed(&b.components)?, v, amplitude(format!("{key}.amplitude"), &b.amplitude)?)
             }
             "symmetry" => {
-                let n = b.normal.as_deref().ok_or_else(|| {
-                    case.error(
-                        format!("{key}.normal"),
-                        "required for type 'symmetry' (x, y or z)",
-                    )
-                })?;
-                (
-                    vec![component_index(case, &format!("{key}.normal"), n, kin)?],
-                    0.0,
-                    amplitudes["ramp"].clone(),
-                )
+                let n = b
+                    .normal
+                    .as_deref()
+                    .ok_or_else(|| case.error(format!("{key}.normal"), "required for type 'symmetry' (x, y or z)"))?;
+                (vec![component_index(case, &format!("{key}.normal"), n, kin)?], 0.0, amplitudes["ramp"].clone())
             }
             other => {
                 return Err(case.error(
                     format!("{key}.type"),
-                    format!(
-                        "unknown boundary type '{other}' (known: fixed, displacement, symmetry)"
-                    ),
+                    format!("unknown boundary type '{other}' (known: fixed, displacement, symmetry)"),
                 ));
             }
         };
@@ -336,16 +298,12 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
             &mesh.nodes,
             model.sets.iter().flat_map(|s| {
                 let ct = s.kernel.cell_type();
-                s.connectivity
-                    .chunks_exact(ct.n_nodes())
-                    .map(move |conn| (ct, conn))
+                s.connectivity.chunks_exact(ct.n_nodes()).map(move |conn| (ct, conn))
             }),
         );
         for (i, l) in c.loads.iter().enumerate() {
             let key = format!("loads[{i}]");
-            let group = mesh
-                .group(&l.group)
-                .map_err(|e| case.error(format!("{key}.group"), e.to_string()))?;
+            let group = mesh.group(&l.group).map_err(|e| case.error(format!("{key}.group"), e.to_string()))?;
             if group.dim + 1 != model_dim {
                 return Err(case.error(
                     format!("{key}.group"),
@@ -359,19 +317,17 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
             }
             let traction: Box<dyn Fn([f64; 3], [f64; 3]) -> [f64; 3]> = match l.kind.as_str() {
                 "pressure" => {
-                    let p = l.value.ok_or_else(|| {
-                        case.error(format!("{key}.value"), "required for type 'pressure'")
-                    })?;
+                    let p =
+                        l.value.ok_or_else(|| case.error(format!("{key}.value"), "required for type 'pressure'"))?;
                     Box::new(move |_x, n| [-p * n[0], -p * n[1], -p * n[2]])
                 }
                 "traction" => {
-                    let v = l.vector.clone().ok_or_else(|| {
-                        case.error(format!("{key}.vector"), "required for type 'traction'")
-                    })?;
+                    let v = l
+                        .vector
+                        .clone()
+                        .ok_or_else(|| case.error(format!("{key}.vector"), "required for type 'traction'"))?;
                     if v.len() != dpn {
-                        return Err(
-                            case.error(format!("{key}.vector"), format!("needs {dpn} components"))
-                        );
+                        return Err(case.error(format!("{key}.vector"), format!("needs {dpn} components")));
                     }
                     let t = [v[0], v[1], if dpn == 3 { v[2] } else { 0.0 }];
                     Box::new(move |_x, _n| t)
@@ -386,8 +342,8 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
             let mut vector = vec![0.0; model.n_dofs()];
             let mut any = false;
             for block in mesh.blocks_of(group) {
-                let integrator = FaceIntegrator::new(block.cell_type, kin, 0)
-                    .map_err(|m| case.error(format!("{key}.group"), m))?;
+                let integrator =
+                    FaceIntegrator::new(block.cell_type, kin, 0).map_err(|m| case.error(format!("{key}.group"), m))?;
                 let nn = block.cell_type.n_nodes();
                 let mut fe = vec![0.0; nn * dpn];
                 for face in block.cells() {
@@ -396,7 +352,10 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
                     let centroid = pts[0].position;
                     let nc = block.cell_type.n_corners();
                     let sign = finder.outward_sign(&face[..nc], centroid, pts[0].normal).ok_or_else(|| {
-                        case.error(format!("{key}.group"), format!("a face of group '{}' is not on the boundary of any section's cells", l.group))
+                        case.error(
+                            format!("{key}.group"),
+                            format!("a face of group '{}' is not on the boundary of any section's cells", l.group),
+                        )
                     })?;
                     fe.fill(0.0);
                     integrator.integrate_traction(&coords, sign, &traction, &mut fe);
@@ -409,10 +368,7 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
                 }
             }
             if !any {
-                return Err(case.error(
-                    format!("{key}.group"),
-                    format!("group '{}' has no faces", l.group),
-                ));
+                return Err(case.error(format!("{key}.group"), format!("group '{}' has no faces", l.group)));
             }
             model.loads.push(ExternalLoad {
                 name: l.group.clone(),
@@ -422,13 +378,44 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
         }
     }
 
-    model.finalize().map_err(|e| StictionError::Case {
-        path: case.path.clone(),
-        message: e.to_string(),
-    })?;
-    Ok(BuiltModel {
-        model,
-        reaction_groups,
-        mesh_path,
-    })
+    // Interfaces.
+    let modulus = materials.values().map(|m| m.stiffness_scale()).fold(0.0, f64::max);
+    for (i, spec) in c.interfaces.iter().enumerate() {
+        let key = format!("interfaces[{i}]");
+        if spec.kind != "rigid-flat" {
+            return Err(case
+                .error(format!("{key}.type"), format!("unknown interface type '{}' (known: rigid-flat)", spec.kind)));
+        }
+        let group = mesh.group(&spec.surface).map_err(|e| case.error(format!("{key}.surface"), e.to_string()))?;
+        let face_size = mean_edge_length(&mesh, group)
+            .ok_or_else(|| case.error(format!("{key}.surface"), format!("group '{}' has no faces", spec.surface)))?;
+        let given: Vec<(String, f64)> = spec.parameters.iter().map(|(k, v)| (k.clone(), *v)).collect();
+        let law = crate::laws::make_law(&spec.law, &given, &crate::laws::LawContext { modulus, face_size })
+            .map_err(|m| case.error(format!("{key}.law"), m))?;
+        let normal = match (&spec.normal, kin) {
+            (None, Kinematics::Solid3D) => [0.0, 0.0, 1.0],
+            (None, Kinematics::Axisymmetric) => [0.0, 1.0, 0.0],
+            (Some(v), _) if v.len() == dpn => [v[0], v[1], if dpn == 3 { v[2] } else { 0.0 }],
+            (Some(_), _) => return Err(case.error(format!("{key}.normal"), format!("needs {dpn} components"))),
+        };
+        let flat = stiction_interfaces::RigidFlat::new(
+            &mesh,
+            kin,
+            stiction_interfaces::RigidFlatSpec {
+                name: spec.name.clone(),
+                surface: spec.surface.clone(),
+                normal,
+                approach_scale: spec.approach,
+                approach_amplitude: amplitude(format!("{key}.amplitude"), &spec.amplitude)?,
+                initial_gap: spec.initial_gap,
+                extra_order: spec.quadrature_order,
+            },
+            law,
+        )
+        .map_err(|e| case.error(&key, e.to_string()))?;
+        model.contributions.push(Box::new(flat));
+    }
+
+    model.finalize().map_err(|e| StictionError::Case { path: case.path.clone(), message: e.to_string() })?;
+    Ok(BuiltModel { model, reaction_groups, mesh_path })
 }

@@ -8,25 +8,15 @@ pub enum StictionError {
     #[error("case file '{path}': {message}")]
     Case { path: PathBuf, message: String },
     #[error("case file '{path}', key '{key}': {message}")]
-    CaseKey {
-        path: PathBuf,
-        key: String,
-        message: String,
-    },
+    CaseKey { path: PathBuf, key: String, message: String },
     #[error(transparent)]
     Mesh(#[from] stiction_meshes::MeshError),
     #[error(transparent)]
     Materials(#[from] stiction_materials::MaterialsError),
     #[error(transparent)]
     Core(#[from] stiction_core::CoreError),
-    #[error(
-        "the run stopped at t = {time:.6}: {message} (every converged step so far is in '{out}')"
-    )]
-    RunFailed {
-        time: f64,
-        message: String,
-        out: PathBuf,
-    },
+    #[error("the run stopped at t = {time:.6}: {message} (every converged step so far is in '{out}')")]
+    RunFailed { time: f64, message: String, out: PathBuf },
 }
 
 impl StictionError {

@@ -10,11 +10,7 @@ use stiction_core::voigt::von_mises;
 
 /// The cells of the solid (type, flattened gmsh connectivity) in the order of the cell fields.
 pub fn solid_cells(model: &Model) -> Vec<(CellType, &[usize])> {
-    model
-        .sets
-        .iter()
-        .map(|s| (s.kernel.cell_type(), s.connectivity.as_slice()))
-        .collect()
+    model.sets.iter().map(|s| (s.kernel.cell_type(), s.connectivity.as_slice())).collect()
 }
 
 /// Point and cell fields at the current (committed) state.
@@ -48,10 +44,7 @@ pub fn solid_fields(model: &Model) -> (Vec<Field>, Vec<Field>) {
         let nq = set.kernel.n_points();
         let ns = set.material.n_state();
         let mine = set.material.output_names();
-        let map: Vec<usize> = mine
-            .iter()
-            .map(|n| names.iter().position(|m| m == n).unwrap())
-            .collect();
+        let map: Vec<usize> = mine.iter().map(|n| names.iter().position(|m| m == n).unwrap()).collect();
         let mut vols = vec![0.0; nq];
         let mut coords = vec![[0.0; 3]; set.kernel.n_nodes()];
         let mut out = vec![0.0; mine.len()];
@@ -72,10 +65,7 @@ pub fn solid_fields(model: &Model) -> (Vec<Field>, Vec<Field>) {
                 }
                 vm += w * von_mises(s);
                 if ns > 0 {
-                    set.material.outputs(
-                        &set.committed_state()[(c * nq + q) * ns..(c * nq + q + 1) * ns],
-                        &mut out,
-                    );
+                    set.material.outputs(&set.committed_state()[(c * nq + q) * ns..(c * nq + q + 1) * ns], &mut out);
                     for (i, &j) in map.iter().enumerate() {
                         m_avg[j] += w * out[i];
                     }
@@ -118,17 +108,10 @@ pub fn solid_fields(model: &Model) -> (Vec<Field>, Vec<Field>) {
         Field::new("stress", 6, node_stress),
         Field::new("von_mises", 1, node_vm),
     ];
-    let mut cell = vec![
-        Field::new("stress", 6, cell_stress),
-        Field::new("von_mises", 1, cell_vm),
-    ];
+    let mut cell = vec![Field::new("stress", 6, cell_stress), Field::new("von_mises", 1, cell_vm)];
     for (j, name) in names.iter().enumerate() {
         point.push(Field::new(*name, 1, node_mat[j].clone()));
-        cell.push(Field::new(
-            *name,
-            1,
-            (0..n_cells).map(|c| cell_mat[c * nm + j]).collect(),
-        ));
+        cell.push(Field::new(*name, 1, (0..n_cells).map(|c| cell_mat[c * nm + j]).collect()));
     }
     if model.kinematics == Kinematics::Axisymmetric {
         // ParaView users expect a note on the components: r, z, theta.

@@ -11,6 +11,7 @@ pub mod build;
 pub mod case;
 pub mod error;
 pub mod fields;
+pub mod laws;
 pub mod run;
 
 pub use error::StictionError;

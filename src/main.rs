@@ -8,11 +8,7 @@ use stiction::case;
 use stiction::run::{RunOptions, output_directory};
 
 #[derive(Parser)]
-#[command(
-    name = "stiction",
-    version,
-    about = "Implicit finite elements for adhesive and cohesive contact"
-)]
+#[command(name = "stiction", version, about = "Implicit finite elements for adhesive and cohesive contact")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -54,17 +50,9 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run {
-            case,
-            out,
-            sets,
-            quiet,
-        } => (|| {
+        Command::Run { case, out, sets, quiet } => (|| {
             let loaded = case::load(&case, &sets)?;
-            let options = RunOptions {
-                out,
-                progress: !quiet && std::io::stderr().is_terminal(),
-            };
+            let options = RunOptions { out, progress: !quiet && std::io::stderr().is_terminal() };
             let dir = output_directory(&loaded, &options);
             let summary = stiction::run::run(&loaded, &options)?;
             println!(

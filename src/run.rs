@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stiction_core::linear_solver::SparseSolver;
 use stiction_core::newton::{Incrementation, NewtonSettings, solve_increment};
-use stiction_core::output::vtk::{CellList, PvdSeries, write_vtu};
+use stiction_core::output::vtk::{CellList, PvdSeries, write_points_vtu, write_vtu};
 use stiction_core::output::{HistoryWriter, write_atomically};
 
 /// Options of `stiction run` beyond the case file.
@@ -65,10 +65,7 @@ pub fn run(case: &LoadedCase, options: &RunOptions) -> Result<RunSummary> {
 fn settings(case: &LoadedCase) -> Result<NewtonSettings> {
     let s = &case.case.solver;
     if !(s.tol_residual > 0.0) || !(s.tol_displacement > 0.0) || s.max_iterations == 0 {
-        return Err(case.error(
-            "solver",
-            "tolerances must be positive and max_iterations at least 1",
-        ));
+        return Err(case.error("solver", "tolerances must be positive and max_iterations at least 1"));
     }
     Ok(NewtonSettings {
         max_iterations: s.max_iterations,
@@ -81,17 +78,9 @@ fn settings(case: &LoadedCase) -> Result<NewtonSettings> {
 
 /// Runs an already built model.
 /// The model keeps the final converged state for inspection.
-pub fn run_model(
-    case: &LoadedCase,
-    built: &mut BuiltModel,
-    options: &RunOptions,
-) -> Result<RunSummary> {
+pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions) -> Result<RunSummary> {
     let wall = Instant::now();
-    let BuiltModel {
-        model,
-        reaction_groups,
-        ..
-    } = built;
+    let BuiltModel { model, reaction_groups, .. } = built;
     let reaction_groups = &*reaction_groups;
     let newton = settings(case)?;
     if case.case.steps.is_empty() {
@@ -115,23 +104,17 @@ pub fn run_model(
             growth_factor: case.case.solver.growth_factor,
             easy_iterations: 5,
         };
-        inc.validate()
-            .map_err(|e| case.error(format!("steps[{i}]"), e.to_string()))?;
+        inc.validate().map_err(|e| case.error(format!("steps[{i}]"), e.to_string()))?;
         incrementations.push(inc);
         previous_end = s.end_time;
     }
     if case.case.solver.threads > 0 {
         // Ignored if a global pool exists already (e.g. several runs in one process).
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(case.case.solver.threads)
-            .build_global();
+        let _ = rayon::ThreadPoolBuilder::new().num_threads(case.case.solver.threads).build_global();
     }
 
     let out = output_directory(case, options);
-    std::fs::create_dir_all(&out).map_err(|source| stiction_core::CoreError::Write {
-        path: out.clone(),
-        source,
-    })?;
+    std::fs::create_dir_all(&out).map_err(|source| stiction_core::CoreError::Write { path: out.clone(), source })?;
     let dpn = model.dofs_per_node();
     let comp = |k: usize| {
         if model.kinematics == stiction_core::element::Kinematics::Axisymmetric {
@@ -140,24 +123,23 @@ pub fn run_model(
             ["x", "y", "z"][k]
         }
     };
-    let mut columns: Vec<String> = ["step", "increment", "time", "iterations"]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
+    let mut columns: Vec<String> = ["step", "increment", "time", "iterations"].iter().map(|s| s.to_string()).collect();
     for (g, _) in reaction_groups {
         for k in 0..dpn {
             columns.push(format!("reaction_{g}_{}", comp(k)));
         }
     }
     columns.push("plastic_dissipation".into());
-    let contribution_columns: Vec<String> = model
-        .contributions
-        .iter()
-        .flat_map(|c| c.history().into_iter().map(|(n, _)| n))
-        .collect();
+    let contribution_columns: Vec<String> =
+        model.contributions.iter().flat_map(|c| c.history().into_iter().map(|(n, _)| n)).collect();
     columns.extend(contribution_columns);
     let mut history = HistoryWriter::create(&out.join("history.csv"), columns)?;
     let mut pvd = PvdSeries::new(out.join(format!("{}.pvd", case.name)));
+    let mut point_series: Vec<PvdSeries> = model
+        .contributions
+        .iter()
+        .map(|c| PvdSeries::new(out.join(format!("{}_{}.pvd", case.name, c.name()))))
+        .collect();
     let write_vtk = case.case.output.vtk;
 
     let mut solver = SparseSolver::new(model.pattern())?;
@@ -215,25 +197,29 @@ pub fn run_model(
         history.append(&row)?;
         Ok(())
     };
-    let vtk_frame =
-        |model: &stiction_core::model::Model, pvd: &mut PvdSeries, frame: usize| -> Result<()> {
-            let file = format!("{}_{frame:05}.vtu", case.name);
-            let (point, cell) = solid_fields(model);
-            let cells = solid_cells(model);
-            let lists: Vec<CellList> = cells
-                .iter()
-                .map(|(t, c)| CellList {
-                    cell_type: *t,
-                    connectivity: c,
-                })
-                .collect();
-            write_vtu(&out.join(&file), &model.mesh.nodes, &lists, &point, &cell)?;
-            pvd.add(model.time, &file)?;
-            Ok(())
-        };
+    let vtk_frame = |model: &stiction_core::model::Model,
+                     pvd: &mut PvdSeries,
+                     series: &mut Vec<PvdSeries>,
+                     frame: usize|
+     -> Result<()> {
+        for (c, s) in model.contributions.iter().zip(series.iter_mut()) {
+            if let Some((points, fields)) = c.point_output() {
+                let file = format!("{}_{}_{frame:05}.vtu", case.name, c.name());
+                write_points_vtu(&out.join(&file), &points, &fields)?;
+                s.add(model.time, &file)?;
+            }
+        }
+        let file = format!("{}_{frame:05}.vtu", case.name);
+        let (point, cell) = solid_fields(model);
+        let cells = solid_cells(model);
+        let lists: Vec<CellList> = cells.iter().map(|(t, c)| CellList { cell_type: *t, connectivity: c }).collect();
+        write_vtu(&out.join(&file), &model.mesh.nodes, &lists, &point, &cell)?;
+        pvd.add(model.time, &file)?;
+        Ok(())
+    };
     record(model, &mut history, 0, 0, 0)?;
     if write_vtk {
-        vtk_frame(model, &mut pvd, frame)?;
+        vtk_frame(model, &mut pvd, &mut point_series, frame)?;
         frame += 1;
     }
 
@@ -242,10 +228,7 @@ pub fn run_model(
     'steps: for (si, (step, inc)) in case.case.steps.iter().zip(&incrementations).enumerate() {
         let mut dt = inc.initial;
         let mut since_output = 0;
-        let step_name = step
-            .name
-            .clone()
-            .unwrap_or_else(|| format!("step {}", si + 1));
+        let step_name = step.name.clone().unwrap_or_else(|| format!("step {}", si + 1));
         while t < step.end_time - 1e-12 * t_end {
             let mut target = (t + dt).min(step.end_time);
             // land on amplitude breakpoints so load reversals are exact
@@ -272,19 +255,11 @@ pub fn run_model(
                     summary.assembly_seconds += report.assembly_seconds;
                     summary.factorization_seconds += report.factorization_seconds;
                     summary.solve_seconds += report.solve_seconds;
-                    record(
-                        model,
-                        &mut history,
-                        si + 1,
-                        summary.increments,
-                        report.iterations,
-                    )?;
+                    record(model, &mut history, si + 1, summary.increments, report.iterations)?;
                     since_output += 1;
                     let at_end = t >= step.end_time - 1e-12 * t_end;
-                    if write_vtk
-                        && ((step.output_every > 0 && since_output >= step.output_every) || at_end)
-                    {
-                        vtk_frame(model, &mut pvd, frame)?;
+                    if write_vtk && ((step.output_every > 0 && since_output >= step.output_every) || at_end) {
+                        vtk_frame(model, &mut pvd, &mut point_series, frame)?;
                         frame += 1;
                         since_output = 0;
                     }
@@ -302,14 +277,9 @@ pub fn run_model(
                     model.rollback();
                     summary.cut_increments += 1;
                     dt *= inc.cut_factor;
-                    bar.set_message(format!(
-                        "{step_name}: cut to dt = {dt:.2e} at t = {t:.4} ({e})"
-                    ));
+                    bar.set_message(format!("{step_name}: cut to dt = {dt:.2e} at t = {t:.4} ({e})"));
                     if dt < inc.minimum {
-                        failure = Some((
-                            t,
-                            format!("increment below the minimum {:.3e} after: {e}", inc.minimum),
-                        ));
+                        failure = Some((t, format!("increment below the minimum {:.3e} after: {e}", inc.minimum)));
                         break 'steps;
                     }
                 }
@@ -320,11 +290,7 @@ pub fn run_model(
     summary.final_time = t;
     summary.plastic_dissipation = model.dissipation();
     summary.wall_seconds = wall.elapsed().as_secs_f64();
-    summary.status = if failure.is_some() {
-        "failed".into()
-    } else {
-        "completed".into()
-    };
+    summary.status = if failure.is_some() { "failed".into() } else { "completed".into() };
     summary.message = failure.as_ref().map(|f| f.1.clone());
     write_summary(&out, &summary)?;
     if let Some((time, message)) = failure {

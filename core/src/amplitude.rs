@@ -20,24 +20,17 @@ impl Amplitude {
             )));
         }
         if times.windows(2).any(|w| !(w[1] > w[0])) {
-            return Err(CoreError::Invalid(
-                "amplitude times must be strictly increasing".into(),
-            ));
+            return Err(CoreError::Invalid("amplitude times must be strictly increasing".into()));
         }
         if times.iter().chain(values.iter()).any(|v| !v.is_finite()) {
-            return Err(CoreError::Invalid(
-                "amplitude entries must be finite numbers".into(),
-            ));
+            return Err(CoreError::Invalid("amplitude entries must be finite numbers".into()));
         }
         Ok(Self { times, values })
     }
 
     /// The ramp 0 -> 1 over t in [0, 1], constant after.
     pub fn ramp() -> Self {
-        Self {
-            times: vec![0.0, 1.0],
-            values: vec![0.0, 1.0],
-        }
+        Self { times: vec![0.0, 1.0], values: vec![0.0, 1.0] }
     }
 
     /// Linear interpolation: a(t) = v_i + (v_{i+1} - v_i)(t - t_i)/(t_{i+1} - t_i).
@@ -56,10 +49,7 @@ impl Amplitude {
 
     /// Breakpoints strictly inside (t0, t1): steps land on them so kinks are resolved exactly.
     pub fn breakpoints_between(&self, t0: f64, t1: f64) -> impl Iterator<Item = f64> + '_ {
-        self.times
-            .iter()
-            .copied()
-            .filter(move |&t| t > t0 && t < t1)
+        self.times.iter().copied().filter(move |&t| t > t0 && t < t1)
     }
 
     pub fn end_time(&self) -> f64 {

@@ -11,24 +11,14 @@ pub enum CoreError {
     EmptyGroup { name: String, what: String },
     #[error("{0}")]
     Invalid(String),
-    #[error(
-        "material '{material}' failed at element {element}, integration point {point}: {message}"
-    )]
-    MaterialFailure {
-        material: String,
-        element: usize,
-        point: usize,
-        message: String,
-    },
+    #[error("material '{material}' failed at element {element}, integration point {point}: {message}")]
+    MaterialFailure { material: String, element: usize, point: usize, message: String },
     #[error("the tangent matrix could not be factorized ({0})")]
     Factorization(String),
     #[error("non-finite value in the {0}")]
     NonFinite(String),
     #[error("could not write '{path}': {source}")]
-    Write {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Write { path: PathBuf, source: std::io::Error },
 }
 
 pub type Result<T> = std::result::Result<T, CoreError>;

@@ -13,6 +13,7 @@
 pub mod amplitude;
 pub mod element;
 pub mod error;
+pub mod interface_law;
 pub mod linear_solver;
 pub mod material;
 pub mod mesh;

@@ -37,36 +37,19 @@ impl SparseSolver {
     /// Symbolic analysis of `pattern` (done once per topology).
     pub fn new(pattern: &SparsityPattern) -> Result<Self> {
         let par = Par::Seq;
-        let sym = SymbolicSparseColMatRef::new_checked(
-            pattern.n,
-            pattern.n,
-            &pattern.col_ptr,
-            None,
-            &pattern.row_idx,
-        );
-        let symbolic = factorize_symbolic_cholesky(
-            sym,
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams::default(),
-        )
-        .map_err(|e| CoreError::Factorization(format!("symbolic analysis failed: {e:?}")))?;
+        let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
+        let symbolic =
+            factorize_symbolic_cholesky(sym, Side::Lower, SymmetricOrdering::Amd, CholeskySymbolicParams::default())
+                .map_err(|e| CoreError::Factorization(format!("symbolic analysis failed: {e:?}")))?;
         let req = StackReq::any_of(&[
             symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
             symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
             symbolic.solve_in_place_scratch::<f64>(1, par),
         ]);
-        let workspace = MemBuffer::try_new(req).map_err(|_| {
-            CoreError::Factorization("out of memory for the factorization workspace".into())
-        })?;
+        let workspace = MemBuffer::try_new(req)
+            .map_err(|_| CoreError::Factorization("out of memory for the factorization workspace".into()))?;
         let factor_values = vec![0.0; symbolic.len_val()];
-        Ok(Self {
-            symbolic,
-            factor_values,
-            workspace,
-            kind: None,
-            par,
-        })
+        Ok(Self { symbolic, factor_values, workspace, kind: None, par })
     }
 
     /// Number of stored entries of the factor.
@@ -83,13 +66,7 @@ impl SparseSolver {
         if values.iter().any(|v| !v.is_finite()) {
             return Err(CoreError::NonFinite("tangent matrix".into()));
         }
-        let sym = SymbolicSparseColMatRef::new_checked(
-            pattern.n,
-            pattern.n,
-            &pattern.col_ptr,
-            None,
-            &pattern.row_idx,
-        );
+        let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
         let a = SparseColMatRef::new(sym, values);
         let stack = MemStack::new(&mut self.workspace);
         let llt = self.symbolic.factorize_numeric_llt(
@@ -127,25 +104,17 @@ impl SparseSolver {
     /// Solves A x = b in place (b becomes x) with the last factorization.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
         let n = rhs.len();
-        let kind = self
-            .kind
-            .ok_or_else(|| CoreError::Factorization("solve before factorization".into()))?;
+        let kind = self.kind.ok_or_else(|| CoreError::Factorization("solve before factorization".into()))?;
         let stack = MemStack::new(&mut self.workspace);
         let rhs_mat = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match kind {
-            FactorKind::Llt => {
-                faer::sparse::linalg::cholesky::LltRef::new(&self.symbolic, &self.factor_values)
-                    .solve_in_place_with_conj(Conj::No, rhs_mat, self.par, stack)
-            }
-            FactorKind::Ldlt => {
-                faer::sparse::linalg::cholesky::LdltRef::new(&self.symbolic, &self.factor_values)
-                    .solve_in_place_with_conj(Conj::No, rhs_mat, self.par, stack)
-            }
+            FactorKind::Llt => faer::sparse::linalg::cholesky::LltRef::new(&self.symbolic, &self.factor_values)
+                .solve_in_place_with_conj(Conj::No, rhs_mat, self.par, stack),
+            FactorKind::Ldlt => faer::sparse::linalg::cholesky::LdltRef::new(&self.symbolic, &self.factor_values)
+                .solve_in_place_with_conj(Conj::No, rhs_mat, self.par, stack),
         }
         if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(CoreError::NonFinite(
-                "solution of the linear system (singular tangent?)".into(),
-            ));
+            return Err(CoreError::NonFinite("solution of the linear system (singular tangent?)".into()));
         }
         Ok(())
     }
@@ -160,9 +129,7 @@ mod tests {
     fn solves_spd_and_indefinite_tridiagonal_systems() {
         let n = 50;
         let cells: Vec<Vec<usize>> = (0..n - 1).map(|i| vec![i, i + 1]).collect();
-        let p = SparsityPattern::from_cells(n, n, 1, cells.iter().map(|c| c.as_slice()), |a, _| {
-            Some(a)
-        });
+        let p = SparsityPattern::from_cells(n, n, 1, cells.iter().map(|c| c.as_slice()), |a, _| Some(a));
         for shift in [0.1, -1.5] {
             let mut values = vec![0.0; p.nnz()];
             for i in 0..n {
@@ -174,24 +141,13 @@ mod tests {
             }
             let mut solver = SparseSolver::new(&p).unwrap();
             let kind = solver.factorize(&p, &values).unwrap();
-            assert_eq!(
-                kind,
-                if shift > 0.0 {
-                    FactorKind::Llt
-                } else {
-                    FactorKind::Ldlt
-                }
-            );
+            assert_eq!(kind, if shift > 0.0 { FactorKind::Llt } else { FactorKind::Ldlt });
             let b: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
             let mut x = b.clone();
             solver.solve_in_place(&mut x).unwrap();
             let mut ax = vec![0.0; n];
             p.multiply(&values, &x, &mut ax);
-            let err = ax
-                .iter()
-                .zip(&b)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max);
+            let err = ax.iter().zip(&b).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
             assert!(err < 1e-10, "shift {shift}: residual {err}");
         }
     }

@@ -71,12 +71,7 @@ impl CellType {
     pub fn facets(self) -> &'static [&'static [usize]] {
         match self {
             CellType::Tet4 => &[&[0, 2, 1], &[0, 1, 3], &[0, 3, 2], &[1, 2, 3]],
-            CellType::Tet10 => &[
-                &[0, 2, 1, 6, 5, 4],
-                &[0, 1, 3, 4, 9, 7],
-                &[0, 3, 2, 7, 8, 6],
-                &[1, 2, 3, 5, 8, 9],
-            ],
+            CellType::Tet10 => &[&[0, 2, 1, 6, 5, 4], &[0, 1, 3, 4, 9, 7], &[0, 3, 2, 7, 8, 6], &[1, 2, 3, 5, 8, 9]],
             CellType::Tri3 => &[&[0, 1], &[1, 2], &[2, 0]],
             CellType::Tri6 => &[&[0, 1, 3], &[1, 2, 4], &[2, 0, 5]],
             _ => &[],
@@ -128,11 +123,7 @@ pub struct Mesh {
 impl Mesh {
     /// Highest topological dimension of any cell.
     pub fn dim(&self) -> usize {
-        self.blocks
-            .iter()
-            .map(|b| b.cell_type.dim())
-            .max()
-            .unwrap_or(0)
+        self.blocks.iter().map(|b| b.cell_type.dim()).max().unwrap_or(0)
     }
 
     /// Looks a group up by name, or by its numeric tag written as text.
@@ -146,10 +137,7 @@ impl Mesh {
                 return Ok(hits[0]);
             }
         }
-        Err(CoreError::UnknownGroup {
-            name: name.to_string(),
-            known: self.group_list(),
-        })
+        Err(CoreError::UnknownGroup { name: name.to_string(), known: self.group_list() })
     }
 
     /// "name (dim D, tag T), ..." for messages.
@@ -165,21 +153,13 @@ impl Mesh {
     }
 
     /// Blocks of the given group.
-    pub fn blocks_of<'a>(
-        &'a self,
-        group: &'a PhysicalGroup,
-    ) -> impl Iterator<Item = &'a CellBlock> + 'a {
-        self.blocks
-            .iter()
-            .filter(move |b| b.physical_tag == group.tag && b.cell_type.dim() == group.dim)
+    pub fn blocks_of<'a>(&'a self, group: &'a PhysicalGroup) -> impl Iterator<Item = &'a CellBlock> + 'a {
+        self.blocks.iter().filter(move |b| b.physical_tag == group.tag && b.cell_type.dim() == group.dim)
     }
 
     /// Sorted, unique node indices touched by a group.
     pub fn group_nodes(&self, group: &PhysicalGroup) -> Vec<usize> {
-        let mut nodes: Vec<usize> = self
-            .blocks_of(group)
-            .flat_map(|b| b.connectivity.iter().copied())
-            .collect();
+        let mut nodes: Vec<usize> = self.blocks_of(group).flat_map(|b| b.connectivity.iter().copied()).collect();
         nodes.sort_unstable();
         nodes.dedup();
         nodes

@@ -95,6 +95,11 @@ pub trait Contribution: Send {
     fn history(&self) -> Vec<(String, f64)> {
         Vec::new()
     }
+    /// Points with fields at the committed state, written as VTK vertices (e.g. interface
+    /// integration points with gap and traction).
+    fn point_output(&self) -> Option<(Vec<[f64; 3]>, Vec<crate::output::vtk::Field>)> {
+        None
+    }
 }
 
 /// A prescribed displacement component: u[dof] = scale * amplitude(t).
@@ -182,9 +187,7 @@ impl Model {
         self.free_dofs.len()
     }
     pub fn pattern(&self) -> &SparsityPattern {
-        self.pattern
-            .as_ref()
-            .expect("Model::finalize must be called before assembly")
+        self.pattern.as_ref().expect("Model::finalize must be called before assembly")
     }
     pub fn free_dofs(&self) -> &[usize] {
         &self.free_dofs
@@ -220,9 +223,7 @@ impl Model {
         let dpn = self.dofs_per_node();
         let n_nodes = self.mesh.nodes.len();
         if self.sets.is_empty() {
-            return Err(CoreError::Invalid(
-                "the model has no elements to solve for".into(),
-            ));
+            return Err(CoreError::Invalid("the model has no elements to solve for".into()));
         }
         let mut used = vec![false; n_nodes];
         for set in &self.sets {
@@ -246,15 +247,9 @@ impl Model {
             }
         }
         if self.free_dofs.is_empty() {
-            return Err(CoreError::Invalid(
-                "every degree of freedom is prescribed: nothing to solve".into(),
-            ));
+            return Err(CoreError::Invalid("every degree of freedom is prescribed: nothing to solve".into()));
         }
-        let extra: Vec<Vec<usize>> = self
-            .contributions
-            .iter()
-            .flat_map(|c| c.coupled_nodes())
-            .collect();
+        let extra: Vec<Vec<usize>> = self.contributions.iter().flat_map(|c| c.coupled_nodes()).collect();
         let free_index = &self.free_index;
         let dof_of = |node: usize, c: usize| {
             let f = free_index[node * dpn + c];
@@ -265,8 +260,7 @@ impl Model {
             .iter()
             .flat_map(|s| s.connectivity.chunks_exact(s.kernel.n_nodes()))
             .chain(extra.iter().map(|v| v.as_slice()));
-        let pattern =
-            SparsityPattern::from_cells(self.free_dofs.len(), n_nodes, dpn, cells, dof_of);
+        let pattern = SparsityPattern::from_cells(self.free_dofs.len(), n_nodes, dpn, cells, dof_of);
         let mut dofs = Vec::new();
         let mut slots = Vec::new();
         for set in &mut self.sets {
@@ -317,10 +311,7 @@ impl Model {
     pub fn assemble(&mut self, with_tangent: bool) -> Result<AssemblyStats> {
         let start = std::time::Instant::now();
         let dpn = self.dofs_per_node();
-        let pattern = self
-            .pattern
-            .as_ref()
-            .expect("Model::finalize must be called before assembly");
+        let pattern = self.pattern.as_ref().expect("Model::finalize must be called before assembly");
         let nnz = pattern.nnz();
         let n_dofs = self.displacement.len();
         self.internal_force.fill(0.0);
@@ -359,55 +350,54 @@ impl Model {
             let displacement = &self.displacement;
             let set_name = &set.name;
             let single = jobs.len() == 1;
-            let run =
-                |(first, last, state_trial, stress): (usize, usize, &mut [f64], &mut [Stress]),
-                 force: &mut [f64],
-                 values: &mut [f64]|
-                 -> Result<()> {
-                    let mut coords = vec![[0.0; 3]; nn];
-                    let mut u = vec![0.0; nd];
-                    let mut fe = vec![0.0; nd];
-                    let mut ke = vec![0.0; nd * nd];
-                    for cell in first..last {
-                        let conn = &connectivity[cell * nn..(cell + 1) * nn];
-                        for (a, &node) in conn.iter().enumerate() {
-                            coords[a] = nodes[node];
-                            for c in 0..dpn {
-                                u[a * dpn + c] = displacement[node * dpn + c];
-                            }
+            let run = |(first, last, state_trial, stress): (usize, usize, &mut [f64], &mut [Stress]),
+                       force: &mut [f64],
+                       values: &mut [f64]|
+             -> Result<()> {
+                let mut coords = vec![[0.0; 3]; nn];
+                let mut u = vec![0.0; nd];
+                let mut fe = vec![0.0; nd];
+                let mut ke = vec![0.0; nd * nd];
+                for cell in first..last {
+                    let conn = &connectivity[cell * nn..(cell + 1) * nn];
+                    for (a, &node) in conn.iter().enumerate() {
+                        coords[a] = nodes[node];
+                        for c in 0..dpn {
+                            u[a * dpn + c] = displacement[node * dpn + c];
                         }
-                        let local = cell - first;
-                        let buffers = ElementBuffers {
-                            force: &mut fe,
-                            stiffness: if with_tangent { Some(&mut ke) } else { None },
-                            stress: &mut stress[local * nq..(local + 1) * nq],
-                        };
-                        kernel
-                            .evaluate(
-                                &coords,
-                                &u,
-                                material,
-                                &committed[cell * nq * ns..(cell + 1) * nq * ns],
-                                &mut state_trial[local * nq * ns..(local + 1) * nq * ns],
-                                buffers,
-                            )
-                            .map_err(|f| element_error(set_name, material.name(), cell, f))?;
-                        for (a, &node) in conn.iter().enumerate() {
-                            for c in 0..dpn {
-                                force[node * dpn + c] += fe[a * dpn + c];
-                            }
+                    }
+                    let local = cell - first;
+                    let buffers = ElementBuffers {
+                        force: &mut fe,
+                        stiffness: if with_tangent { Some(&mut ke) } else { None },
+                        stress: &mut stress[local * nq..(local + 1) * nq],
+                    };
+                    kernel
+                        .evaluate(
+                            &coords,
+                            &u,
+                            material,
+                            &committed[cell * nq * ns..(cell + 1) * nq * ns],
+                            &mut state_trial[local * nq * ns..(local + 1) * nq * ns],
+                            buffers,
+                        )
+                        .map_err(|f| element_error(set_name, material.name(), cell, f))?;
+                    for (a, &node) in conn.iter().enumerate() {
+                        for c in 0..dpn {
+                            force[node * dpn + c] += fe[a * dpn + c];
                         }
-                        if with_tangent {
-                            let cell_slots = &slots[cell * nd * nd..(cell + 1) * nd * nd];
-                            for (k, &s) in cell_slots.iter().enumerate() {
-                                if s != NO_SLOT {
-                                    values[s as usize] += ke[k];
-                                }
+                    }
+                    if with_tangent {
+                        let cell_slots = &slots[cell * nd * nd..(cell + 1) * nd * nd];
+                        for (k, &s) in cell_slots.iter().enumerate() {
+                            if s != NO_SLOT {
+                                values[s as usize] += ke[k];
                             }
                         }
                     }
-                    Ok(())
-                };
+                }
+                Ok(())
+            };
             if single {
                 let job = jobs.pop().unwrap();
                 run(job, &mut self.internal_force, &mut self.tangent_values)?;
@@ -416,11 +406,7 @@ impl Model {
                     .into_par_iter()
                     .map(|job| {
                         let mut force = vec![0.0; n_dofs];
-                        let mut values = if with_tangent {
-                            vec![0.0; nnz]
-                        } else {
-                            Vec::new()
-                        };
+                        let mut values = if with_tangent { vec![0.0; nnz] } else { Vec::new() };
                         run(job, &mut force, &mut values).map(|_| (force, values))
                     })
                     .collect();
@@ -430,10 +416,7 @@ impl Model {
                         *a += b;
                     }
                     if with_tangent {
-                        self.tangent_values
-                            .par_iter_mut()
-                            .zip(values.par_iter())
-                            .for_each(|(a, b)| *a += b);
+                        self.tangent_values.par_iter_mut().zip(values.par_iter()).for_each(|(a, b)| *a += b);
                     }
                 }
             }
@@ -463,9 +446,7 @@ impl Model {
         if self.residual.iter().any(|r| !r.is_finite()) {
             return Err(CoreError::NonFinite("residual force vector".into()));
         }
-        Ok(AssemblyStats {
-            seconds: start.elapsed().as_secs_f64(),
-        })
+        Ok(AssemblyStats { seconds: start.elapsed().as_secs_f64() })
     }
 
     /// Accepts the current state as converged.
@@ -476,8 +457,7 @@ impl Model {
         for c in &mut self.contributions {
             c.commit();
         }
-        self.displacement_committed
-            .copy_from_slice(&self.displacement);
+        self.displacement_committed.copy_from_slice(&self.displacement);
         self.time_committed = self.time;
     }
 
@@ -489,8 +469,7 @@ impl Model {
         for c in &mut self.contributions {
             c.rollback();
         }
-        self.displacement
-            .copy_from_slice(&self.displacement_committed);
+        self.displacement.copy_from_slice(&self.displacement_committed);
         self.time = self.time_committed;
     }
 

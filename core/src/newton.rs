@@ -59,14 +59,8 @@ pub enum IncrementFailure {
 impl std::fmt::Display for IncrementFailure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            IncrementFailure::Diverged {
-                iterations,
-                residual,
-            } => {
-                write!(
-                    f,
-                    "no convergence after {iterations} iterations (residual {residual:.3e})"
-                )
+            IncrementFailure::Diverged { iterations, residual } => {
+                write!(f, "no convergence after {iterations} iterations (residual {residual:.3e})")
             }
             IncrementFailure::Error(e) => write!(f, "{e}"),
         }
@@ -101,9 +95,7 @@ pub fn solve_increment(
     let mut du = vec![0.0; model.n_free()];
     for iteration in 0..=settings.max_iterations {
         let r_norm = norm(&model.residual);
-        let force_scale = norm(&model.internal_force)
-            .max(norm(&model.external_force))
-            .max(settings.force_floor);
+        let force_scale = norm(&model.internal_force).max(norm(&model.external_force)).max(settings.force_floor);
         report.residual_norms.push(r_norm);
         let residual_ok = r_norm <= settings.tol_residual * force_scale;
         if iteration > 0 || r_norm <= 1e-3 * settings.tol_residual * force_scale {
@@ -143,16 +135,11 @@ pub fn solve_increment(
         if !accepted && settings.line_search {
             let mut previous = alpha;
             for _ in 0..settings.max_line_search {
-                let trial_norm = if first.is_ok() {
-                    norm(&model.residual)
-                } else {
-                    f64::INFINITY
-                };
+                let trial_norm = if first.is_ok() { norm(&model.residual) } else { f64::INFINITY };
                 // Quadratic model of ||r||^2 along the search direction, safeguarded to [0.1, 0.5].
                 let next = if trial_norm.is_finite() {
                     let (g0, g1) = (r_norm * r_norm, trial_norm * trial_norm);
-                    let a =
-                        previous * previous * g0 / (g1 + g0 * (2.0 * previous - 1.0)).max(1e-300);
+                    let a = previous * previous * g0 / (g1 + g0 * (2.0 * previous - 1.0)).max(1e-300);
                     a.clamp(0.1 * previous, 0.5 * previous)
                 } else {
                     0.25 * previous
@@ -160,9 +147,7 @@ pub fn solve_increment(
                 model.update_free(&du, next - previous);
                 previous = next;
                 alpha = next;
-                if model.assemble(false).is_ok()
-                    && norm(&model.residual) < r_norm * (1.0 - 1e-4 * alpha)
-                {
+                if model.assemble(false).is_ok() && norm(&model.residual) < r_norm * (1.0 - 1e-4 * alpha) {
                     accepted = true;
                     break;
                 }
@@ -185,10 +170,7 @@ pub fn solve_increment(
             *d *= alpha;
         }
     }
-    Err(IncrementFailure::Diverged {
-        iterations: settings.max_iterations,
-        residual: norm(&model.residual),
-    })
+    Err(IncrementFailure::Diverged { iterations: settings.max_iterations, residual: norm(&model.residual) })
 }
 
 /// Incrementation: initial, minimum and maximum increments in pseudo-time, with cutting on

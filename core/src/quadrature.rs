@@ -54,10 +54,7 @@ pub fn gauss_legendre(n: usize) -> QuadratureRule {
 /// u, v in [0, 1]; Jacobian (1 - u). Exact to degree 2n - 2.
 pub fn triangle_collapsed(n: usize) -> QuadratureRule {
     let g = gauss_legendre(n);
-    let mut rule = QuadratureRule {
-        points: vec![],
-        weights: vec![],
-    };
+    let mut rule = QuadratureRule { points: vec![], weights: vec![] };
     for (pu, wu) in g.points.iter().zip(&g.weights) {
         let u = 0.5 * (pu[0] + 1.0);
         for (pv, wv) in g.points.iter().zip(&g.weights) {
@@ -73,20 +70,15 @@ pub fn triangle_collapsed(n: usize) -> QuadratureRule {
 /// z = w (1 - u)(1 - v); Jacobian (1 - u)^2 (1 - v). Exact to degree 2n - 3.
 pub fn tetrahedron_collapsed(n: usize) -> QuadratureRule {
     let g = gauss_legendre(n);
-    let mut rule = QuadratureRule {
-        points: vec![],
-        weights: vec![],
-    };
+    let mut rule = QuadratureRule { points: vec![], weights: vec![] };
     for (pu, wu) in g.points.iter().zip(&g.weights) {
         let u = 0.5 * (pu[0] + 1.0);
         for (pv, wv) in g.points.iter().zip(&g.weights) {
             let v = 0.5 * (pv[0] + 1.0);
             for (pw, ww) in g.points.iter().zip(&g.weights) {
                 let w = 0.5 * (pw[0] + 1.0);
-                rule.points
-                    .push([u, v * (1.0 - u), w * (1.0 - u) * (1.0 - v)]);
-                rule.weights
-                    .push(0.125 * wu * wv * ww * (1.0 - u) * (1.0 - u) * (1.0 - v));
+                rule.points.push([u, v * (1.0 - u), w * (1.0 - u) * (1.0 - v)]);
+                rule.weights.push(0.125 * wu * wv * ww * (1.0 - u) * (1.0 - u) * (1.0 - v));
             }
         }
     }
@@ -95,19 +87,13 @@ pub fn tetrahedron_collapsed(n: usize) -> QuadratureRule {
 
 /// One-point centroid rule of the triangle (degree 1).
 pub fn triangle_1() -> QuadratureRule {
-    QuadratureRule {
-        points: vec![[1.0 / 3.0, 1.0 / 3.0, 0.0]],
-        weights: vec![0.5],
-    }
+    QuadratureRule { points: vec![[1.0 / 3.0, 1.0 / 3.0, 0.0]], weights: vec![0.5] }
 }
 
 /// Three-point interior rule of the triangle (degree 2): points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3).
 pub fn triangle_3() -> QuadratureRule {
     let (a, b) = (1.0 / 6.0, 2.0 / 3.0);
-    QuadratureRule {
-        points: vec![[a, a, 0.0], [b, a, 0.0], [a, b, 0.0]],
-        weights: vec![1.0 / 6.0; 3],
-    }
+    QuadratureRule { points: vec![[a, a, 0.0], [b, a, 0.0], [a, b, 0.0]], weights: vec![1.0 / 6.0; 3] }
 }
 
 /// Six-point rule of the triangle (Dunavant, degree 4).
@@ -116,24 +102,14 @@ pub fn triangle_6() -> QuadratureRule {
     let (a2, w2) = (0.091_576_213_509_771, 0.109_951_743_655_322 / 2.0);
     let (b1, b2) = (1.0 - 2.0 * a1, 1.0 - 2.0 * a2);
     QuadratureRule {
-        points: vec![
-            [a1, a1, 0.0],
-            [b1, a1, 0.0],
-            [a1, b1, 0.0],
-            [a2, a2, 0.0],
-            [b2, a2, 0.0],
-            [a2, b2, 0.0],
-        ],
+        points: vec![[a1, a1, 0.0], [b1, a1, 0.0], [a1, b1, 0.0], [a2, a2, 0.0], [b2, a2, 0.0], [a2, b2, 0.0]],
         weights: vec![w1, w1, w1, w2, w2, w2],
     }
 }
 
 /// One-point centroid rule of the tetrahedron (degree 1).
 pub fn tetrahedron_1() -> QuadratureRule {
-    QuadratureRule {
-        points: vec![[0.25, 0.25, 0.25]],
-        weights: vec![1.0 / 6.0],
-    }
+    QuadratureRule { points: vec![[0.25, 0.25, 0.25]], weights: vec![1.0 / 6.0] }
 }
 
 /// Four-point rule of the tetrahedron (degree 2), the C3D10 rule:
@@ -142,10 +118,7 @@ pub fn tetrahedron_4() -> QuadratureRule {
     let s5 = 5f64.sqrt();
     let a = (5.0 + 3.0 * s5) / 20.0;
     let b = (5.0 - s5) / 20.0;
-    QuadratureRule {
-        points: vec![[b, b, b], [a, b, b], [b, a, b], [b, b, a]],
-        weights: vec![1.0 / 24.0; 4],
-    }
+    QuadratureRule { points: vec![[b, b, b], [a, b, b], [b, a, b], [b, b, a]], weights: vec![1.0 / 24.0; 4] }
 }
 
 #[cfg(test)]
@@ -168,17 +141,8 @@ mod tests {
         for n in 1..8 {
             let g = gauss_legendre(n);
             for p in 0..(2 * n) as i32 {
-                let q: f64 = g
-                    .points
-                    .iter()
-                    .zip(&g.weights)
-                    .map(|(x, w)| w * x[0].powi(p))
-                    .sum();
-                let exact = if p % 2 == 1 {
-                    0.0
-                } else {
-                    2.0 / (p as f64 + 1.0)
-                };
+                let q: f64 = g.points.iter().zip(&g.weights).map(|(x, w)| w * x[0].powi(p)).sum();
+                let exact = if p % 2 == 1 { 0.0 } else { 2.0 / (p as f64 + 1.0) };
                 assert!((q - exact).abs() < 1e-13, "n={n} p={p}: {q} vs {exact}");
             }
         }
@@ -186,12 +150,7 @@ mod tests {
 
     #[test]
     fn triangle_rules_are_exact_to_their_degree() {
-        for (rule, deg) in [
-            (triangle_1(), 1),
-            (triangle_3(), 2),
-            (triangle_6(), 4),
-            (triangle_collapsed(4), 6),
-        ] {
+        for (rule, deg) in [(triangle_1(), 1), (triangle_3(), 2), (triangle_6(), 4), (triangle_collapsed(4), 6)] {
             for i in 0..=deg {
                 for j in 0..=(deg - i) {
                     let q: f64 = rule
@@ -201,10 +160,7 @@ mod tests {
                         .map(|(p, w)| w * p[0].powi(i as i32) * p[1].powi(j as i32))
                         .sum();
                     let e = tri_monomial(i, j);
-                    assert!(
-                        (q - e).abs() < 1e-12 * e.max(1e-3),
-                        "deg {deg} x^{i}y^{j}: {q} vs {e}"
-                    );
+                    assert!((q - e).abs() < 1e-12 * e.max(1e-3), "deg {deg} x^{i}y^{j}: {q} vs {e}");
                 }
             }
         }
@@ -212,11 +168,7 @@ mod tests {
 
     #[test]
     fn tetrahedron_rules_are_exact_to_their_degree() {
-        for (rule, deg) in [
-            (tetrahedron_1(), 1),
-            (tetrahedron_4(), 2),
-            (tetrahedron_collapsed(4), 5),
-        ] {
+        for (rule, deg) in [(tetrahedron_1(), 1), (tetrahedron_4(), 2), (tetrahedron_collapsed(4), 5)] {
             for i in 0..=deg {
                 for j in 0..=(deg - i) {
                     for k in 0..=(deg - i - j) {
@@ -224,9 +176,7 @@ mod tests {
                             .points
                             .iter()
                             .zip(&rule.weights)
-                            .map(|(p, w)| {
-                                w * p[0].powi(i as i32) * p[1].powi(j as i32) * p[2].powi(k as i32)
-                            })
+                            .map(|(p, w)| w * p[0].powi(i as i32) * p[1].powi(j as i32) * p[2].powi(k as i32))
                             .sum();
                         let e = tet_monomial(i, j, k);
                         assert!((q - e).abs() < 1e-12, "deg {deg} {i}{j}{k}: {q} vs {e}");

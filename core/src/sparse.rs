@@ -57,11 +57,7 @@ impl SparsityPattern {
             row_idx.extend_from_slice(&column);
             col_ptr.push(row_idx.len());
         }
-        Self {
-            n: n_free,
-            col_ptr,
-            row_idx,
-        }
+        Self { n: n_free, col_ptr, row_idx }
     }
 
     pub fn nnz(&self) -> usize {
@@ -84,9 +80,7 @@ impl SparsityPattern {
             let Some(r) = ri else { continue };
             for (j, cj) in dofs.iter().enumerate() {
                 let Some(c) = cj else { continue };
-                let s = self
-                    .slot(*r, *c)
-                    .expect("element dofs are in the pattern by construction");
+                let s = self.slot(*r, *c).expect("element dofs are in the pattern by construction");
                 slots[i * n + j] = s as u32;
             }
         }

@@ -18,10 +18,7 @@ fn key(corners: &[usize]) -> [usize; 3] {
 
 impl BoundaryFinder {
     /// Indexes the facets of the given volume cells.
-    pub fn new<'a>(
-        nodes: &[[f64; 3]],
-        cells: impl Iterator<Item = (CellType, &'a [usize])>,
-    ) -> Self {
+    pub fn new<'a>(nodes: &[[f64; 3]], cells: impl Iterator<Item = (CellType, &'a [usize])>) -> Self {
         let mut faces = HashMap::new();
         for (cell_type, conn) in cells {
             let nc = cell_type.n_corners();
@@ -42,12 +39,7 @@ impl BoundaryFinder {
 
     /// +1 if the face normal computed from `normal` (at the face) points away from the
     /// adjacent cell, -1 if it points into it; `None` if the face bounds no indexed cell.
-    pub fn outward_sign(
-        &self,
-        face_corners: &[usize],
-        face_centroid: [f64; 3],
-        normal: [f64; 3],
-    ) -> Option<f64> {
+    pub fn outward_sign(&self, face_corners: &[usize], face_centroid: [f64; 3], normal: [f64; 3]) -> Option<f64> {
         let c = self.faces.get(&key(face_corners))?;
         let d: f64 = (0..3).map(|k| (face_centroid[k] - c[k]) * normal[k]).sum();
         Some(if d >= 0.0 { 1.0 } else { -1.0 })

@@ -33,15 +33,9 @@ impl FaceIntegrator {
         let rule = match (kinematics, cell) {
             (Kinematics::Solid3D, CellType::Tri3) if extra_order == 0 => quadrature::triangle_3(),
             (Kinematics::Solid3D, CellType::Tri6) if extra_order == 0 => quadrature::triangle_6(),
-            (Kinematics::Solid3D, CellType::Tri3 | CellType::Tri6) => {
-                quadrature::triangle_collapsed(3 + extra_order)
-            }
-            (Kinematics::Axisymmetric, CellType::Line2) => {
-                quadrature::gauss_legendre(2 + extra_order)
-            }
-            (Kinematics::Axisymmetric, CellType::Line3) => {
-                quadrature::gauss_legendre(3 + extra_order)
-            }
+            (Kinematics::Solid3D, CellType::Tri3 | CellType::Tri6) => quadrature::triangle_collapsed(3 + extra_order),
+            (Kinematics::Axisymmetric, CellType::Line2) => quadrature::gauss_legendre(2 + extra_order),
+            (Kinematics::Axisymmetric, CellType::Line3) => quadrature::gauss_legendre(3 + extra_order),
             _ => {
                 return Err(format!(
                     "a {} is not a boundary face of a {} model (3d: 3- or 6-node triangles; axisymmetric: 2- or 3-node lines)",
@@ -61,12 +55,7 @@ impl FaceIntegrator {
                 (n, dn)
             })
             .collect();
-        Ok(Self {
-            cell,
-            kinematics,
-            rule,
-            shapes,
-        })
+        Ok(Self { cell, kinematics, rule, shapes })
     }
 
     pub fn cell_type(&self) -> CellType {
@@ -92,32 +81,18 @@ impl FaceIntegrator {
             }
             let (normal, da) = match self.kinematics {
                 Kinematics::Solid3D => {
-                    let m = [
-                        t1[1] * t2[2] - t1[2] * t2[1],
-                        t1[2] * t2[0] - t1[0] * t2[2],
-                        t1[0] * t2[1] - t1[1] * t2[0],
-                    ];
+                    let m =
+                        [t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]];
                     let len = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
-                    (
-                        [sign * m[0] / len, sign * m[1] / len, sign * m[2] / len],
-                        len * w,
-                    )
+                    ([sign * m[0] / len, sign * m[1] / len, sign * m[2] / len], len * w)
                 }
                 Kinematics::Axisymmetric => {
                     let len = (t1[0] * t1[0] + t1[1] * t1[1]).sqrt();
                     // normal to the right of the tangent: (t_z, -t_r)
-                    (
-                        [sign * t1[1] / len, -sign * t1[0] / len, 0.0],
-                        len * w * 2.0 * std::f64::consts::PI * x[0],
-                    )
+                    ([sign * t1[1] / len, -sign * t1[0] / len, 0.0], len * w * 2.0 * std::f64::consts::PI * x[0])
                 }
             };
-            out.push(FacePoint {
-                position: x,
-                normal,
-                area: da,
-                shape: n.clone(),
-            });
+            out.push(FacePoint { position: x, normal, area: da, shape: n.clone() });
         }
         out
     }

@@ -49,30 +49,13 @@ pub fn evaluate(cell: CellType, xi: &[f64; 3], n: &mut [f64], dn: &mut [[f64; 3]
         }
         CellType::Tet10 => {
             let l = [1.0 - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2]];
-            let dl = [
-                [-1.0, -1.0, -1.0],
-                [1.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [0.0, 0.0, 1.0],
-            ];
-            quadratic_simplex(
-                &l,
-                &dl,
-                &[(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)],
-                n,
-                dn,
-            );
+            let dl = [[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+            quadratic_simplex(&l, &dl, &[(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)], n, dn);
         }
     }
 }
 
-fn quadratic_simplex(
-    l: &[f64],
-    dl: &[[f64; 3]],
-    edges: &[(usize, usize)],
-    n: &mut [f64],
-    dn: &mut [[f64; 3]],
-) {
+fn quadratic_simplex(l: &[f64], dl: &[[f64; 3]], edges: &[(usize, usize)], n: &mut [f64], dn: &mut [[f64; 3]]) {
     let nc = l.len();
     for i in 0..nc {
         n[i] = l[i] * (2.0 * l[i] - 1.0);
@@ -94,20 +77,10 @@ pub fn reference_nodes(cell: CellType) -> Vec<[f64; 3]> {
         CellType::Line2 => vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
         CellType::Line3 => vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
         CellType::Tri3 => vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-        CellType::Tri6 => vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.5, 0.0, 0.0],
-            [0.5, 0.5, 0.0],
-            [0.0, 0.5, 0.0],
-        ],
-        CellType::Tet4 => vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-        ],
+        CellType::Tri6 => {
+            vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.0, 0.0], [0.5, 0.5, 0.0], [0.0, 0.5, 0.0]]
+        }
+        CellType::Tet4 => vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
         CellType::Tet10 => vec![
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],
@@ -127,14 +100,8 @@ pub fn reference_nodes(cell: CellType) -> Vec<[f64; 3]> {
 mod tests {
     use super::*;
 
-    const ALL: [CellType; 6] = [
-        CellType::Line2,
-        CellType::Line3,
-        CellType::Tri3,
-        CellType::Tri6,
-        CellType::Tet4,
-        CellType::Tet10,
-    ];
+    const ALL: [CellType; 6] =
+        [CellType::Line2, CellType::Line3, CellType::Tri3, CellType::Tri6, CellType::Tet4, CellType::Tet10];
 
     #[test]
     fn kronecker_property_and_partition_of_unity() {
@@ -175,11 +142,7 @@ mod tests {
                 evaluate(cell, &xm, &mut n0, &mut scratch);
                 for a in 0..nn {
                     let fd = (n1[a] - n0[a]) / (2.0 * h);
-                    assert!(
-                        (fd - dn[a][k]).abs() < 1e-8,
-                        "{cell:?} dN{a}/dxi{k}: {fd} vs {}",
-                        dn[a][k]
-                    );
+                    assert!((fd - dn[a][k]).abs() < 1e-8, "{cell:?} dN{a}/dxi{k}: {fd} vs {}", dn[a][k]);
                 }
             }
         }

@@ -39,27 +39,15 @@ pub struct SolidKernel {
 impl SolidKernel {
     /// Creates the kernel; the cell type must suit the kinematics (tets in 3D, triangles in
     /// axisymmetric models).
-    pub fn new(
-        cell: CellType,
-        kinematics: Kinematics,
-        choice: QuadratureChoice,
-    ) -> Result<Self, String> {
+    pub fn new(cell: CellType, kinematics: Kinematics, choice: QuadratureChoice) -> Result<Self, String> {
         let rule = match (kinematics, cell, choice) {
-            (Kinematics::Solid3D, CellType::Tet4, QuadratureChoice::Standard) => {
-                quadrature::tetrahedron_1()
-            }
-            (Kinematics::Solid3D, CellType::Tet10, QuadratureChoice::Standard) => {
-                quadrature::tetrahedron_4()
-            }
+            (Kinematics::Solid3D, CellType::Tet4, QuadratureChoice::Standard) => quadrature::tetrahedron_1(),
+            (Kinematics::Solid3D, CellType::Tet10, QuadratureChoice::Standard) => quadrature::tetrahedron_4(),
             (Kinematics::Solid3D, CellType::Tet4 | CellType::Tet10, QuadratureChoice::High) => {
                 quadrature::tetrahedron_collapsed(4)
             }
-            (Kinematics::Axisymmetric, CellType::Tri3, QuadratureChoice::Standard) => {
-                quadrature::triangle_3()
-            }
-            (Kinematics::Axisymmetric, CellType::Tri6, QuadratureChoice::Standard) => {
-                quadrature::triangle_6()
-            }
+            (Kinematics::Axisymmetric, CellType::Tri3, QuadratureChoice::Standard) => quadrature::triangle_3(),
+            (Kinematics::Axisymmetric, CellType::Tri6, QuadratureChoice::Standard) => quadrature::triangle_6(),
             (Kinematics::Axisymmetric, CellType::Tri3 | CellType::Tri6, QuadratureChoice::High) => {
                 quadrature::triangle_collapsed(5)
             }
@@ -88,11 +76,7 @@ impl SolidKernel {
                 PointData { weight, n, dn }
             })
             .collect();
-        Self {
-            cell,
-            kinematics,
-            points,
-        }
+        Self { cell, kinematics, points }
     }
 
     /// Spatial derivatives dN/dx at a point; returns (|J| * weight * [2 pi r]).
@@ -136,11 +120,7 @@ impl SolidKernel {
             (det, inv)
         } else {
             let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-            let inv = [
-                [j[1][1] / det, -j[0][1] / det, 0.0],
-                [-j[1][0] / det, j[0][0] / det, 0.0],
-                [0.0; 3],
-            ];
+            let inv = [[j[1][1] / det, -j[0][1] / det, 0.0], [-j[1][0] / det, j[0][0] / det, 0.0], [0.0; 3]];
             (det, inv)
         };
         if !(det > 0.0) {
@@ -220,11 +200,7 @@ impl ElementKernel for SolidKernel {
         let nd = self.n_dofs();
         let nn = self.cell.n_nodes();
         let ns = material.n_state();
-        let ElementBuffers {
-            force,
-            mut stiffness,
-            stress,
-        } = buffers;
+        let ElementBuffers { force, mut stiffness, stress } = buffers;
         force.fill(0.0);
         if let Some(k) = stiffness.as_deref_mut() {
             k.fill(0.0);
@@ -243,11 +219,7 @@ impl ElementKernel for SolidKernel {
             self.fill_b(p, &dndx[..nn], r, b);
             let mut strain: Strain = [0.0; 6];
             for (i, e) in strain.iter_mut().enumerate() {
-                *e = b[i * nd..(i + 1) * nd]
-                    .iter()
-                    .zip(displacement)
-                    .map(|(x, u)| x * u)
-                    .sum();
+                *e = b[i * nd..(i + 1) * nd].iter().zip(displacement).map(|(x, u)| x * u).sum();
             }
             let mut sigma: Stress = [0.0; 6];
             let mut c: Tangent = [[0.0; 6]; 6];
@@ -302,10 +274,7 @@ impl ElementKernel for SolidKernel {
     fn point_volumes(&self, coords: &[[f64; 3]], out: &mut [f64]) {
         let mut dndx = [[0.0; 3]; 10];
         for (q, p) in self.points.iter().enumerate() {
-            out[q] = self
-                .spatial_derivatives(p, coords, &mut dndx[..self.cell.n_nodes()])
-                .map(|v| v.0)
-                .unwrap_or(0.0);
+            out[q] = self.spatial_derivatives(p, coords, &mut dndx[..self.cell.n_nodes()]).map(|v| v.0).unwrap_or(0.0);
         }
     }
 }

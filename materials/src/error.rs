@@ -3,10 +3,5 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MaterialsError {
     #[error("material '{material}': parameter '{key}' = {value} is invalid: {expected}")]
-    Parameter {
-        material: String,
-        key: &'static str,
-        value: f64,
-        expected: &'static str,
-    },
+    Parameter { material: String, key: &'static str, value: f64, expected: &'static str },
 }

@@ -55,10 +55,7 @@ impl J2Plasticity {
             });
         }
         let mu = youngs_modulus / (2.0 * (1.0 + poissons_ratio));
-        for (key, h) in [
-            ("isotropic_hardening", isotropic_hardening),
-            ("kinematic_hardening", kinematic_hardening),
-        ] {
+        for (key, h) in [("isotropic_hardening", isotropic_hardening), ("kinematic_hardening", kinematic_hardening)] {
             if !h.is_finite() || h <= -3.0 * mu / 2.0 {
                 return Err(MaterialsError::Parameter {
                     material: name,
@@ -90,8 +87,7 @@ impl J2Plasticity {
 
 /// Tensor norm of a stress-like Voigt vector: sqrt(s_ii s_ii + 2 s_ij s_ij (i < j)).
 fn norm(s: &[f64; 6]) -> f64 {
-    (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]))
-        .sqrt()
+    (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])).sqrt()
 }
 
 impl Material for J2Plasticity {
@@ -137,9 +133,7 @@ impl Material for J2Plasticity {
         let h_sum = self.isotropic_hardening + self.kinematic_hardening;
         let dgamma = f_trial / (2.0 * mu + 2.0 / 3.0 * h_sum);
         if !dgamma.is_finite() || dgamma < 0.0 {
-            return Err(MaterialError(format!(
-                "return map produced plastic multiplier {dgamma}"
-            )));
+            return Err(MaterialError(format!("return map produced plastic multiplier {dgamma}")));
         }
         let n: [f64; 6] = std::array::from_fn(|i| xi[i] / xi_norm);
         let mut dissipation = 0.0;

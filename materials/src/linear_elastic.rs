@@ -33,18 +33,10 @@ pub(crate) fn check_elastic(name: &str, e: f64, nu: f64) -> Result<(), Materials
 }
 
 impl LinearElastic {
-    pub fn new(
-        name: impl Into<String>,
-        youngs_modulus: f64,
-        poissons_ratio: f64,
-    ) -> Result<Self, MaterialsError> {
+    pub fn new(name: impl Into<String>, youngs_modulus: f64, poissons_ratio: f64) -> Result<Self, MaterialsError> {
         let name = name.into();
         check_elastic(&name, youngs_modulus, poissons_ratio)?;
-        Ok(Self {
-            name,
-            youngs_modulus,
-            c: isotropic_elasticity(youngs_modulus, poissons_ratio),
-        })
+        Ok(Self { name, youngs_modulus, c: isotropic_elasticity(youngs_modulus, poissons_ratio) })
     }
 }
 

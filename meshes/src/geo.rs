@@ -21,38 +21,24 @@ pub struct GeoOptions {
 
 fn gmsh_version() -> Option<String> {
     let out = Command::new("gmsh").arg("--version").output().ok()?;
-    let text =
-        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
     Some(text.trim().to_string())
 }
 
 /// Meshes `geo` into `cache_dir` (created if needed) and returns the `.msh` path.
 pub fn mesh_geo(geo: &Path, options: &GeoOptions, cache_dir: &Path) -> Result<PathBuf, MeshError> {
-    let text = std::fs::read(geo).map_err(|source| MeshError::Io {
-        path: geo.to_path_buf(),
-        source,
-    })?;
-    let version = gmsh_version().ok_or_else(|| MeshError::GmshMissing {
-        path: geo.to_path_buf(),
-    })?;
+    let text = std::fs::read(geo).map_err(|source| MeshError::Io { path: geo.to_path_buf(), source })?;
+    let version = gmsh_version().ok_or_else(|| MeshError::GmshMissing { path: geo.to_path_buf() })?;
     let mut hasher = Sha256::new();
     hasher.update(&text);
     hasher.update(format!("{options:?}|{version}").as_bytes());
-    let hash: String = hasher
-        .finalize()
-        .iter()
-        .take(8)
-        .map(|b| format!("{b:02x}"))
-        .collect();
+    let hash: String = hasher.finalize().iter().take(8).map(|b| format!("{b:02x}")).collect();
     let stem = geo.file_stem().and_then(|s| s.to_str()).unwrap_or("mesh");
     let out = cache_dir.join(format!("{stem}-{hash}.msh"));
     if out.exists() {
         return Ok(out);
     }
-    std::fs::create_dir_all(cache_dir).map_err(|source| MeshError::Io {
-        path: cache_dir.to_path_buf(),
-        source,
-    })?;
+    std::fs::create_dir_all(cache_dir).map_err(|source| MeshError::Io { path: cache_dir.to_path_buf(), source })?;
     // A temporary name unique to this process and call, so concurrent runs never share it;
     // the rename into place is atomic.
     static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
@@ -73,12 +59,9 @@ pub fn mesh_geo(geo: &Path, options: &GeoOptions, cache_dir: &Path) -> Result<Pa
         cmd.arg("-setnumber").arg(name).arg(value.to_string());
     }
     cmd.arg("-o").arg(&tmp);
-    let result = cmd.output().map_err(|_| MeshError::GmshMissing {
-        path: geo.to_path_buf(),
-    })?;
+    let result = cmd.output().map_err(|_| MeshError::GmshMissing { path: geo.to_path_buf() })?;
     if !result.status.success() || !tmp.exists() {
-        let output = String::from_utf8_lossy(&result.stdout).to_string()
-            + &String::from_utf8_lossy(&result.stderr);
+        let output = String::from_utf8_lossy(&result.stdout).to_string() + &String::from_utf8_lossy(&result.stderr);
         let tail: Vec<&str> = output.lines().rev().take(15).collect();
         return Err(MeshError::GmshFailed {
             path: geo.to_path_buf(),
@@ -86,9 +69,6 @@ pub fn mesh_geo(geo: &Path, options: &GeoOptions, cache_dir: &Path) -> Result<Pa
             output: tail.into_iter().rev().collect::<Vec<_>>().join("\n"),
         });
     }
-    std::fs::rename(&tmp, &out).map_err(|source| MeshError::Io {
-        path: out.clone(),
-        source,
-    })?;
+    std::fs::rename(&tmp, &out).map_err(|source| MeshError::Io { path: out.clone(), source })?;
     Ok(out)
 }

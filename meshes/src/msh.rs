@@ -29,10 +29,7 @@ fn format_version(bytes: &[u8]) -> Option<String> {
     let mut lines = text.lines();
     while let Some(l) = lines.next() {
         if l.trim() == "$MeshFormat" {
-            return lines
-                .next()
-                .and_then(|v| v.split_whitespace().next())
-                .map(str::to_string);
+            return lines.next().and_then(|v| v.split_whitespace().next()).map(str::to_string);
         }
     }
     None
@@ -40,10 +37,7 @@ fn format_version(bytes: &[u8]) -> Option<String> {
 
 /// Reads a gmsh MSH 4.1 file.
 pub fn read_msh(path: &Path) -> Result<Mesh, MeshError> {
-    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = std::fs::read(path).map_err(|source| MeshError::Io { path: path.to_path_buf(), source })?;
     match format_version(&bytes) {
         None => {
             return Err(MeshError::Parse {
@@ -52,38 +46,20 @@ pub fn read_msh(path: &Path) -> Result<Mesh, MeshError> {
             });
         }
         Some(v) if v != "4.1" => {
-            return Err(MeshError::UnsupportedVersion {
-                path: path.to_path_buf(),
-                version: v,
-            });
+            return Err(MeshError::UnsupportedVersion { path: path.to_path_buf(), version: v });
         }
         _ => {}
     }
     let groups_named = parse_physical_names(path, &bytes)?;
     let msh = mshio::parse_msh_bytes(&bytes).map_err(|e| MeshError::Parse {
         path: path.to_path_buf(),
-        message: e
-            .to_string()
-            .lines()
-            .take(6)
-            .collect::<Vec<_>>()
-            .join(" | "),
+        message: e.to_string().lines().take(6).collect::<Vec<_>>().join(" | "),
     })?;
-    let parse_err = |message: String| MeshError::Parse {
-        path: path.to_path_buf(),
-        message,
-    };
-    let nodes_section = msh
-        .data
-        .nodes
-        .as_ref()
-        .ok_or_else(|| parse_err("the file has no $Nodes section".into()))?;
+    let parse_err = |message: String| MeshError::Parse { path: path.to_path_buf(), message };
+    let nodes_section = msh.data.nodes.as_ref().ok_or_else(|| parse_err("the file has no $Nodes section".into()))?;
     let mut nodes = Vec::with_capacity(nodes_section.num_nodes as usize);
     let mut sparse: HashMap<u64, usize> = HashMap::new();
-    let dense = nodes_section
-        .node_blocks
-        .iter()
-        .all(|b| b.node_tags.is_none());
+    let dense = nodes_section.node_blocks.iter().all(|b| b.node_tags.is_none());
     for block in &nodes_section.node_blocks {
         let offset = nodes.len();
         if let Some(tags) = &block.node_tags {
@@ -96,16 +72,9 @@ pub fn read_msh(path: &Path) -> Result<Mesh, MeshError> {
     let min_tag = nodes_section.min_node_tag;
     let n_nodes = nodes.len();
     let index_of = |tag: u64| -> Result<usize, MeshError> {
-        let idx = if dense {
-            tag.checked_sub(min_tag).map(|i| i as usize)
-        } else {
-            sparse.get(&tag).copied()
-        };
-        idx.filter(|&i| i < n_nodes).ok_or_else(|| {
-            parse_err(format!(
-                "an element refers to node tag {tag}, which is not in $Nodes"
-            ))
-        })
+        let idx = if dense { tag.checked_sub(min_tag).map(|i| i as usize) } else { sparse.get(&tag).copied() };
+        idx.filter(|&i| i < n_nodes)
+            .ok_or_else(|| parse_err(format!("an element refers to node tag {tag}, which is not in $Nodes")))
     };
     // (dim, entity tag) -> physical tags
     let mut entity_physicals: HashMap<(i32, i32), Vec<i32>> = HashMap::new();
@@ -123,11 +92,7 @@ pub fn read_msh(path: &Path) -> Result<Mesh, MeshError> {
             entity_physicals.insert((3, v.tag), v.physical_tags.clone());
         }
     }
-    let elements = msh
-        .data
-        .elements
-        .as_ref()
-        .ok_or_else(|| parse_err("the file has no $Elements section".into()))?;
+    let elements = msh.data.elements.as_ref().ok_or_else(|| parse_err("the file has no $Elements section".into()))?;
     let mut blocks: HashMap<(CellType, i32), Vec<usize>> = HashMap::new();
     let mut used_tags: BTreeSet<(usize, i32)> = BTreeSet::new();
     for block in &elements.element_blocks {
@@ -135,22 +100,11 @@ pub fn read_msh(path: &Path) -> Result<Mesh, MeshError> {
             Ok(Some(ct)) => ct,
             Ok(None) => continue,
             Err((what, code)) => {
-                return Err(MeshError::UnsupportedElement {
-                    path: path.to_path_buf(),
-                    what,
-                    code,
-                });
+                return Err(MeshError::UnsupportedElement { path: path.to_path_buf(), what, code });
             }
         };
-        let physicals = entity_physicals
-            .get(&(block.entity_dim, block.entity_tag))
-            .cloned()
-            .unwrap_or_default();
-        let physicals = if physicals.is_empty() {
-            vec![0]
-        } else {
-            physicals
-        };
+        let physicals = entity_physicals.get(&(block.entity_dim, block.entity_tag)).cloned().unwrap_or_default();
+        let physicals = if physicals.is_empty() { vec![0] } else { physicals };
         for &ptag in &physicals {
             let conn = blocks.entry((ct, ptag)).or_default();
             for el in &block.elements {
@@ -175,26 +129,13 @@ pub fn read_msh(path: &Path) -> Result<Mesh, MeshError> {
     let mut groups = groups_named;
     for (dim, tag) in used_tags {
         if !groups.iter().any(|g| g.dim == dim && g.tag == tag) {
-            groups.push(PhysicalGroup {
-                name: tag.to_string(),
-                dim,
-                tag,
-            });
+            groups.push(PhysicalGroup { name: tag.to_string(), dim, tag });
         }
     }
     let mut blocks: Vec<CellBlock> = blocks
         .into_iter()
-        .map(|((cell_type, physical_tag), connectivity)| CellBlock {
-            cell_type,
-            physical_tag,
-            connectivity,
-        })
+        .map(|((cell_type, physical_tag), connectivity)| CellBlock { cell_type, physical_tag, connectivity })
         .collect();
     blocks.sort_by_key(|b| (b.cell_type, b.physical_tag));
-    Ok(Mesh {
-        nodes,
-        blocks,
-        groups,
-        source: path.display().to_string(),
-    })
+    Ok(Mesh { nodes, blocks, groups, source: path.display().to_string() })
 }

@@ -29,6 +29,9 @@ pub struct Case {
     pub boundary: Vec<BoundarySpec>,
     #[serde(default)]
     pub loads: Vec<LoadSpec>,
+    /// Interfaces: a geometry plus an interface law.
+    #[serde(default)]
+    pub interfaces: Vec<InterfaceSpec>,
     pub steps: Vec<StepSpec>,
     #[serde(default)]
     pub solver: SolverSpec,
@@ -148,6 +151,37 @@ pub struct LoadSpec {
     pub amplitude: Option<String>,
 }
 
+/// An interface. Type "rigid-flat": the surface group against a rigid plane that approaches
+/// the body along `normal` by `approach * amplitude(t)`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterfaceSpec {
+    pub name: String,
+    /// "rigid-flat".
+    #[serde(rename = "type")]
+    pub kind: String,
+    /// Surface group of the body (faces: triangles in 3d, lines in axisymmetric models).
+    pub surface: String,
+    /// Unit normal from the flat toward the body (default [0, 0, 1] in 3d, [0, 1] axisymmetric).
+    pub normal: Option<Vec<f64>>,
+    /// Approach of the flat toward the body: approach * amplitude(t) (positive presses).
+    pub approach: f64,
+    /// Amplitude name (default "ramp").
+    pub amplitude: Option<String>,
+    /// Gap between the flat and the closest point of the undeformed surface at approach 0
+    /// (default 0: approach 0 is first touch).
+    #[serde(default)]
+    pub initial_gap: f64,
+    /// Law name: "frictionless-contact" or "lennard-jones".
+    pub law: String,
+    /// Law parameters (validated against the law's parameter list).
+    #[serde(default)]
+    pub parameters: BTreeMap<String, f64>,
+    /// Extra Gauss points per face direction (default 0; short-range laws want 2 or more).
+    #[serde(default)]
+    pub quadrature_order: usize,
+}
+
 /// A step: pseudo-time runs from the end of the previous step to `end_time`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -250,20 +284,13 @@ impl LoadedCase {
         self.path.parent().unwrap_or(Path::new("."))
     }
     pub fn error(&self, key: impl Into<String>, message: impl Into<String>) -> StictionError {
-        StictionError::CaseKey {
-            path: self.path.clone(),
-            key: key.into(),
-            message: message.into(),
-        }
+        StictionError::CaseKey { path: self.path.clone(), key: key.into(), message: message.into() }
     }
 }
 
 /// Reads a case file, applies `--set key=value` overrides and checks the schema.
 pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase> {
-    let bad = |message: String| StictionError::Case {
-        path: path.to_path_buf(),
-        message,
-    };
+    let bad = |message: String| StictionError::Case { path: path.to_path_buf(), message };
     let text = std::fs::read_to_string(path).map_err(|e| bad(format!("cannot read it: {e}")))?;
     let case: Case = if sets.is_empty() {
         toml::from_str(&text).map_err(|e| bad(e.to_string()))?
@@ -274,15 +301,7 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase> {
         }
         Case::deserialize(value).map_err(|e| bad(format!("{e} (after --set overrides)")))?
     };
-    let name = case.name.clone().unwrap_or_else(|| {
-        path.file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("case")
-            .to_string()
-    });
-    Ok(LoadedCase {
-        case,
-        path: path.to_path_buf(),
-        name,
-    })
+    let name =
+        case.name.clone().unwrap_or_else(|| path.file_stem().and_then(|s| s.to_str()).unwrap_or("case").to_string());
+    Ok(LoadedCase { case, path: path.to_path_buf(), name })
 }

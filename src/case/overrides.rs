@@ -19,23 +19,14 @@ pub fn apply(root: &mut toml::Value, assignment: &str) -> Result<(), String> {
     for (i, seg) in parents.iter().enumerate() {
         let here = segments[..=i].join(".");
         node = match node {
-            toml::Value::Table(t) => t
-                .entry(seg.to_string())
-                .or_insert_with(|| toml::Value::Table(toml::Table::new())),
+            toml::Value::Table(t) => t.entry(seg.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new())),
             toml::Value::Array(a) => {
                 let len = a.len();
-                let idx: usize = seg
-                    .parse()
-                    .map_err(|_| format!("'{here}': '{seg}' must be an array index"))?;
-                a.get_mut(idx).ok_or_else(|| {
-                    format!("'{here}': index {idx} is past the end (length {len})")
-                })?
+                let idx: usize = seg.parse().map_err(|_| format!("'{here}': '{seg}' must be an array index"))?;
+                a.get_mut(idx).ok_or_else(|| format!("'{here}': index {idx} is past the end (length {len})"))?
             }
             _ => {
-                return Err(format!(
-                    "'{}' is not a table or array",
-                    segments[..i].join(".")
-                ));
+                return Err(format!("'{}' is not a table or array", segments[..i].join(".")));
             }
         };
     }
@@ -45,12 +36,8 @@ pub fn apply(root: &mut toml::Value, assignment: &str) -> Result<(), String> {
         }
         toml::Value::Array(a) => {
             let len = a.len();
-            let idx: usize = last
-                .parse()
-                .map_err(|_| format!("'{path}': '{last}' must be an array index"))?;
-            *a.get_mut(idx)
-                .ok_or_else(|| format!("'{path}': index {idx} is past the end (length {len})"))? =
-                value;
+            let idx: usize = last.parse().map_err(|_| format!("'{path}': '{last}' must be an array index"))?;
+            *a.get_mut(idx).ok_or_else(|| format!("'{path}': index {idx} is past the end (length {len})"))? = value;
         }
         _ => return Err(format!("'{}' is not a table or array", parents.join("."))),
     }
@@ -71,11 +58,7 @@ mod tests {
         assert_eq!(v["s"][0]["t"].as_integer(), Some(3));
         assert_eq!(v["c"]["d"].as_str(), Some("x"));
         assert_eq!(v["name"].as_str(), Some("plain text"));
-        assert!(
-            apply(&mut v, "s.4.t=1")
-                .unwrap_err()
-                .contains("past the end")
-        );
+        assert!(apply(&mut v, "s.4.t=1").unwrap_err().contains("past the end"));
         assert!(apply(&mut v, "nothing").is_err());
     }
 }

@@ -18,10 +18,7 @@ use stiction_elements::shape;
 
 /// The workspace root (where `cases/` lives).
 pub fn workspace_root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .unwrap()
-        .to_path_buf()
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
 }
 
 /// Loads a shipped case (path relative to the workspace root), applies `--set` overrides, runs
@@ -32,10 +29,7 @@ pub fn run_case(relative: &str, sets: &[&str], label: &str) -> (BuiltModel, RunS
     let loaded = case::load(&path, &sets).unwrap_or_else(|e| panic!("{e}"));
     let mut built = stiction::build::build(&loaded).unwrap_or_else(|e| panic!("{e}"));
     let out = workspace_root().join("target").join("test-out").join(label);
-    let options = RunOptions {
-        out: Some(out),
-        progress: false,
-    };
+    let options = RunOptions { out: Some(out), progress: false };
     let summary = run_model(&loaded, &mut built, &options).unwrap_or_else(|e| panic!("{e}"));
     (built, summary)
 }
@@ -63,11 +57,7 @@ fn add_midside_nodes(
             let idx = *mid.entry((p, q)).or_insert_with(|| {
                 let x = nodes[p];
                 let y = nodes[q];
-                nodes.push([
-                    (x[0] + y[0]) / 2.0,
-                    (x[1] + y[1]) / 2.0,
-                    (x[2] + y[2]) / 2.0,
-                ]);
+                nodes.push([(x[0] + y[0]) / 2.0, (x[1] + y[1]) / 2.0, (x[2] + y[2]) / 2.0]);
                 nodes.len() - 1
             });
             out.push(idx);
@@ -99,14 +89,7 @@ pub fn structured_cube(n: usize, quadratic: bool, distortion: f64) -> Mesh {
         }
     }
     let mut conn = Vec::new();
-    let perms = [
-        [0, 1, 2],
-        [0, 2, 1],
-        [1, 0, 2],
-        [1, 2, 0],
-        [2, 0, 1],
-        [2, 1, 0],
-    ];
+    let perms = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
     for i in 0..n {
         for j in 0..n {
             for k in 0..n {
@@ -122,8 +105,7 @@ pub fn structured_cube(n: usize, quadratic: bool, distortion: f64) -> Mesh {
                     let (x0, x1, x2, x3) = (v(0), v(1), v(2), v(3));
                     let d = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
                     let (e1, e2, e3) = (d(x1, x0), d(x2, x0), d(x3, x0));
-                    let det = e1[0] * (e2[1] * e3[2] - e2[2] * e3[1])
-                        - e1[1] * (e2[0] * e3[2] - e2[2] * e3[0])
+                    let det = e1[0] * (e2[1] * e3[2] - e2[2] * e3[1]) - e1[1] * (e2[0] * e3[2] - e2[2] * e3[0])
                         + e1[2] * (e2[0] * e3[1] - e2[1] * e3[0]);
                     if det < 0.0 {
                         tet.swap(1, 2);
@@ -134,42 +116,22 @@ pub fn structured_cube(n: usize, quadratic: bool, distortion: f64) -> Mesh {
         }
     }
     let (cell_type, connectivity) = if quadratic {
-        let q = add_midside_nodes(
-            &mut nodes,
-            &mut conn,
-            4,
-            &[(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)],
-        );
+        let q = add_midside_nodes(&mut nodes, &mut conn, 4, &[(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)]);
         (CellType::Tet10, q)
     } else {
         (CellType::Tet4, conn)
     };
     Mesh {
         nodes,
-        blocks: vec![CellBlock {
-            cell_type,
-            physical_tag: 1,
-            connectivity,
-        }],
-        groups: vec![PhysicalGroup {
-            name: "body".into(),
-            dim: 3,
-            tag: 1,
-        }],
+        blocks: vec![CellBlock { cell_type, physical_tag: 1, connectivity }],
+        groups: vec![PhysicalGroup { name: "body".into(), dim: 3, tag: 1 }],
         source: "structured cube".into(),
     }
 }
 
 /// Rectangle [r0, r0 + w] x [0, hgt] in the x-y plane, n x n squares of 2 triangles each (tri3
 /// or tri6), interior nodes moved by up to `distortion * h`. Groups: "body" (dim 2).
-pub fn structured_rectangle(
-    n: usize,
-    r0: f64,
-    w: f64,
-    hgt: f64,
-    quadratic: bool,
-    distortion: f64,
-) -> Mesh {
+pub fn structured_rectangle(n: usize, r0: f64, w: f64, hgt: f64, quadratic: bool, distortion: f64) -> Mesh {
     let id = |i: usize, j: usize| i * (n + 1) + j;
     let mut nodes = Vec::new();
     for i in 0..=n {
@@ -190,25 +152,14 @@ pub fn structured_rectangle(
         }
     }
     let (cell_type, connectivity) = if quadratic {
-        (
-            CellType::Tri6,
-            add_midside_nodes(&mut nodes, &mut conn, 3, &[(0, 1), (1, 2), (2, 0)]),
-        )
+        (CellType::Tri6, add_midside_nodes(&mut nodes, &mut conn, 3, &[(0, 1), (1, 2), (2, 0)]))
     } else {
         (CellType::Tri3, conn)
     };
     Mesh {
         nodes,
-        blocks: vec![CellBlock {
-            cell_type,
-            physical_tag: 1,
-            connectivity,
-        }],
-        groups: vec![PhysicalGroup {
-            name: "body".into(),
-            dim: 2,
-            tag: 1,
-        }],
+        blocks: vec![CellBlock { cell_type, physical_tag: 1, connectivity }],
+        groups: vec![PhysicalGroup { name: "body".into(), dim: 2, tag: 1 }],
         source: "structured rectangle".into(),
     }
 }
@@ -243,23 +194,15 @@ pub fn prescribe_where(
 pub fn solve_at_full_load(model: &mut Model) -> IncrementReport {
     model.finalize().unwrap();
     let mut solver = SparseSolver::new(model.pattern()).unwrap();
-    let settings = NewtonSettings {
-        tol_residual: 1e-10,
-        ..NewtonSettings::default()
-    };
-    let report =
-        solve_increment(model, &mut solver, 1.0, &settings, 0.0).unwrap_or_else(|e| panic!("{e}"));
+    let settings = NewtonSettings { tol_residual: 1e-10, ..NewtonSettings::default() };
+    let report = solve_increment(model, &mut solver, 1.0, &settings, 0.0).unwrap_or_else(|e| panic!("{e}"));
     model.commit();
     report
 }
 
 /// L2 norm of (u_h - u_exact) and of u_exact over the solid cells, with `rule` on each cell
 /// (axisymmetric: weighted by 2 pi r).
-pub fn l2_error(
-    model: &Model,
-    rule: &QuadratureRule,
-    exact: impl Fn([f64; 3]) -> [f64; 3],
-) -> (f64, f64) {
+pub fn l2_error(model: &Model, rule: &QuadratureRule, exact: impl Fn([f64; 3]) -> [f64; 3]) -> (f64, f64) {
     let dpn = model.dofs_per_node();
     let (mut err, mut norm) = (0.0, 0.0);
     for set in &model.sets {
@@ -308,20 +251,13 @@ pub fn l2_error(
 }
 
 /// Builds a single-set model.
-pub fn model_with(
-    mesh: Mesh,
-    kin: Kinematics,
-    material: Arc<dyn stiction_core::material::Material>,
-) -> Model {
+pub fn model_with(mesh: Mesh, kin: Kinematics, material: Arc<dyn stiction_core::material::Material>) -> Model {
     let mesh = Arc::new(mesh);
     let mut model = Model::new(mesh.clone(), kin);
     for b in &mesh.blocks {
-        let kernel = stiction_elements::SolidKernel::new(
-            b.cell_type,
-            kin,
-            stiction_elements::QuadratureChoice::Standard,
-        )
-        .unwrap();
+        let kernel =
+            stiction_elements::SolidKernel::new(b.cell_type, kin, stiction_elements::QuadratureChoice::Standard)
+                .unwrap();
         model.sets.push(stiction_core::model::ElementSet::new(
             "body",
             Box::new(kernel),

@@ -6,10 +6,7 @@ use stiction::case;
 use stiction_tests::workspace_root;
 
 fn scratch(name: &str, text: &str) -> PathBuf {
-    let dir = workspace_root()
-        .join("target")
-        .join("test-out")
-        .join("bad-input");
+    let dir = workspace_root().join("target").join("test-out").join("bad-input");
     std::fs::create_dir_all(&dir).unwrap();
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
@@ -38,12 +35,7 @@ end_time = 1.0
 }
 
 fn cantilever_geo() -> String {
-    format!(
-        "geo = \"{}\"",
-        workspace_root()
-            .join("cases/validation/cantilever.geo")
-            .display()
-    )
+    format!("geo = \"{}\"", workspace_root().join("cases/validation/cantilever.geo").display())
 }
 
 /// Loads and builds; returns the error text and its exit code.
@@ -61,16 +53,10 @@ fn failure(path: &PathBuf, sets: &[&str]) -> (String, i32) {
 
 #[test]
 fn unknown_key_names_the_key_and_line() {
-    let p = scratch(
-        "unknown-key.toml",
-        &base_case(&cantilever_geo()).replace("poissons_ratio", "poisson_ratio"),
-    );
+    let p = scratch("unknown-key.toml", &base_case(&cantilever_geo()).replace("poissons_ratio", "poisson_ratio"));
     let (msg, code) = failure(&p, &[]);
     assert_eq!(code, 2);
-    assert!(
-        msg.contains("unknown-key.toml") && msg.contains("poisson_ratio") && msg.contains("line"),
-        "{msg}"
-    );
+    assert!(msg.contains("unknown-key.toml") && msg.contains("poisson_ratio") && msg.contains("line"), "{msg}");
 }
 
 #[test]
@@ -78,24 +64,16 @@ fn unknown_key_from_set_is_rejected() {
     let p = scratch("set-key.toml", &base_case(&cantilever_geo()));
     let (msg, code) = failure(&p, &["solver.max_iteration=3"]);
     assert_eq!(code, 2);
-    assert!(
-        msg.contains("max_iteration") && msg.contains("--set"),
-        "{msg}"
-    );
+    assert!(msg.contains("max_iteration") && msg.contains("--set"), "{msg}");
 }
 
 #[test]
 fn missing_group_lists_the_known_groups() {
-    let p = scratch(
-        "missing-group.toml",
-        &base_case(&cantilever_geo()).replace("group = \"clamp\"", "group = \"clmp\""),
-    );
+    let p =
+        scratch("missing-group.toml", &base_case(&cantilever_geo()).replace("group = \"clamp\"", "group = \"clmp\""));
     let (msg, code) = failure(&p, &[]);
     assert_eq!(code, 2);
-    assert!(
-        msg.contains("boundary[0].group") && msg.contains("'clmp'") && msg.contains("'clamp'"),
-        "{msg}"
-    );
+    assert!(msg.contains("boundary[0].group") && msg.contains("'clmp'") && msg.contains("'clamp'"), "{msg}");
 }
 
 #[test]
@@ -106,18 +84,12 @@ fn non_positive_modulus_names_the_parameter() {
     );
     let (msg, code) = failure(&p, &[]);
     assert_eq!(code, 2);
-    assert!(
-        msg.contains("youngs_modulus") && msg.contains("positive"),
-        "{msg}"
-    );
+    assert!(msg.contains("youngs_modulus") && msg.contains("positive"), "{msg}");
 }
 
 #[test]
 fn missing_mesh_file_names_the_file() {
-    let p = scratch(
-        "missing-mesh.toml",
-        &base_case("file = \"does-not-exist.msh\""),
-    );
+    let p = scratch("missing-mesh.toml", &base_case("file = \"does-not-exist.msh\""));
     let (msg, code) = failure(&p, &[]);
     assert_eq!(code, 2);
     assert!(msg.contains("does-not-exist.msh"), "{msg}");
@@ -126,13 +98,7 @@ fn missing_mesh_file_names_the_file() {
 #[test]
 fn wrong_element_type_for_the_analysis() {
     // a 3D tet mesh used in an axisymmetric analysis: the mesh is not planar
-    let p = scratch(
-        "wrong-analysis.toml",
-        &format!(
-            "analysis = \"axisymmetric\"\n{}",
-            base_case(&cantilever_geo())
-        ),
-    );
+    let p = scratch("wrong-analysis.toml", &format!("analysis = \"axisymmetric\"\n{}", base_case(&cantilever_geo())));
     let (msg, code) = failure(&p, &[]);
     assert_eq!(code, 2);
     assert!(msg.contains("axisymmetric"), "{msg}");
@@ -140,31 +106,18 @@ fn wrong_element_type_for_the_analysis() {
 
 #[test]
 fn msh22_and_malformed_files_are_explained() {
-    let dir = workspace_root()
-        .join("target")
-        .join("test-out")
-        .join("bad-input");
+    let dir = workspace_root().join("target").join("test-out").join("bad-input");
     std::fs::create_dir_all(&dir).unwrap();
     let old = dir.join("old.msh");
     std::fs::write(&old, "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n").unwrap();
     let e = stiction_meshes::read_msh(&old).unwrap_err().to_string();
-    assert!(
-        e.contains("old.msh") && e.contains("2.2") && e.contains("-format msh41"),
-        "{e}"
-    );
+    assert!(e.contains("old.msh") && e.contains("2.2") && e.contains("-format msh41"), "{e}");
     let junk = dir.join("junk.msh");
-    std::fs::write(
-        &junk,
-        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1\n",
-    )
-    .unwrap();
+    std::fs::write(&junk, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1\n").unwrap();
     let e = stiction_meshes::read_msh(&junk).unwrap_err().to_string();
     assert!(e.contains("junk.msh"), "{e}");
     let none = dir.join("not-a-mesh.msh");
     std::fs::write(&none, "hello").unwrap();
     let e = stiction_meshes::read_msh(&none).unwrap_err().to_string();
-    assert!(
-        e.contains("not-a-mesh.msh") && e.contains("$MeshFormat"),
-        "{e}"
-    );
+    assert!(e.contains("not-a-mesh.msh") && e.contains("$MeshFormat"), "{e}");
 }

@@ -42,16 +42,8 @@ fn study_3d(quadratic: bool, levels: &[usize]) -> Vec<f64> {
         .iter()
         .map(|&n| {
             let mat = Arc::new(LinearElastic::new("m", E, NU).unwrap());
-            let mut model =
-                model_with(structured_cube(n, quadratic, 0.1), Kinematics::Solid3D, mat);
-            prescribe_where(
-                &mut model,
-                |x| {
-                    x.iter()
-                        .any(|&c| c.abs() < 1e-12 || (c - 1.0).abs() < 1e-12)
-                },
-                kelvin,
-            );
+            let mut model = model_with(structured_cube(n, quadratic, 0.1), Kinematics::Solid3D, mat);
+            prescribe_where(&mut model, |x| x.iter().any(|&c| c.abs() < 1e-12 || (c - 1.0).abs() < 1e-12), kelvin);
             solve_at_full_load(&mut model);
             let (e, norm) = l2_error(&model, &rule, kelvin);
             e / norm
@@ -65,11 +57,8 @@ fn study_axi(quadratic: bool, levels: &[usize]) -> Vec<f64> {
         .iter()
         .map(|&n| {
             let mat = Arc::new(LinearElastic::new("m", E, NU).unwrap());
-            let mut model = model_with(
-                structured_rectangle(n, 0.5, 1.0, 1.0, quadratic, 0.1),
-                Kinematics::Axisymmetric,
-                mat,
-            );
+            let mut model =
+                model_with(structured_rectangle(n, 0.5, 1.0, 1.0, quadratic, 0.1), Kinematics::Axisymmetric, mat);
             let on_boundary = |x: [f64; 3]| {
                 (x[0] - 0.5).abs() < 1e-12
                     || (x[0] - 1.5).abs() < 1e-12

@@ -27,9 +27,7 @@ fn check_lame(case: &str, label: &str, tol_u: f64) {
             continue; // an unused geometry node
         }
         let exact = lame_u(rho, p, a, b, e, nu);
-        let u_rad: f64 = (0..dpn)
-            .map(|k| m.displacement[n * dpn + k] * x[k] / rho)
-            .sum();
+        let u_rad: f64 = (0..dpn).map(|k| m.displacement[n * dpn + k] * x[k] / rho).sum();
         worst = worst.max((u_rad - exact).abs() / exact);
     }
     println!("{case}: max relative error of u_rho over all nodes {worst:.3e}");
@@ -62,15 +60,8 @@ fn check_lame(case: &str, label: &str, tol_u: f64) {
             }
         }
     }
-    println!(
-        "{case}: mean relative error of the hoop stress at integration points {:.3e}",
-        sum / count
-    );
-    assert!(
-        sum / count < 0.01,
-        "{case}: hoop stress error {}",
-        sum / count
-    );
+    println!("{case}: mean relative error of the hoop stress at integration points {:.3e}", sum / count);
+    assert!(sum / count < 0.01, "{case}: hoop stress error {}", sum / count);
 }
 
 fn kernel_points(k: &stiction_elements::SolidKernel) -> usize {
@@ -85,11 +76,7 @@ fn lame_sphere_3d_octant() {
 
 #[test]
 fn lame_sphere_axisymmetric() {
-    check_lame(
-        "cases/validation/lame-sphere-axisym.toml",
-        "lame-axi",
-        0.002,
-    );
+    check_lame("cases/validation/lame-sphere-axisym.toml", "lame-axi", 0.002);
 }
 
 #[test]
@@ -98,27 +85,17 @@ fn cantilever_tip_deflection_matches_timoshenko() {
     let m = &built.model;
     let tip = m.mesh.group("tip").unwrap();
     let nodes = m.mesh.group_nodes(tip);
-    let uz: f64 = nodes
-        .iter()
-        .map(|&n| m.displacement[n * 3 + 2])
-        .sum::<f64>()
-        / nodes.len() as f64;
+    let uz: f64 = nodes.iter().map(|&n| m.displacement[n * 3 + 2]).sum::<f64>() / nodes.len() as f64;
     let (l, b, h, e, nu, t): (f64, f64, f64, f64, f64, f64) = (10.0, 1.0, 1.0, 200.0, 0.3, 0.001);
     let p = t * b * h;
     let i = b * h.powi(3) / 12.0;
     let g = e / (2.0 * (1.0 + nu));
     let exact = p * l.powi(3) / (3.0 * e * i) + p * l / (5.0 / 6.0 * g * b * h);
     let rel = (-uz - exact) / exact;
-    println!(
-        "cantilever tip deflection {:.6e}, Timoshenko {exact:.6e}, relative difference {rel:.3e}",
-        -uz
-    );
+    println!("cantilever tip deflection {:.6e}, Timoshenko {exact:.6e}, relative difference {rel:.3e}", -uz);
     assert!(rel.abs() < 0.02, "{rel}");
     // Equilibrium: the clamp reaction balances the applied load.
     let clamp = m.mesh.group_nodes(m.mesh.group("clamp").unwrap());
     let r = m.reaction(&clamp);
-    assert!(
-        (r[2] - p).abs() < 1e-9 * p.max(1.0) + 1e-9,
-        "clamp reaction {r:?} vs load {p}"
-    );
+    assert!((r[2] - p).abs() < 1e-9 * p.max(1.0) + 1e-9, "clamp reaction {r:?} vs load {p}");
 }

@@ -46,64 +46,34 @@ fn check(
     }
     assert!(worst < 1e-12, "{kin:?}: displacement error {worst:e}");
     let c = stiction_core::voigt::isotropic_elasticity(E, NU);
-    let sigma: Vec<f64> = (0..6)
-        .map(|i| (0..6).map(|j| c[i][j] * strain[j]).sum())
-        .collect();
+    let sigma: Vec<f64> = (0..6).map(|i| (0..6).map(|j| c[i][j] * strain[j]).sum()).collect();
     for set in &model.sets {
         for s in set.stresses() {
             for i in 0..6 {
-                assert!(
-                    (s[i] - sigma[i]).abs() < 1e-9 * E * 1e-3,
-                    "{kin:?}: stress {i} {} vs {}",
-                    s[i],
-                    sigma[i]
-                );
+                assert!((s[i] - sigma[i]).abs() < 1e-9 * E * 1e-3, "{kin:?}: stress {i} {} vs {}", s[i], sigma[i]);
             }
         }
     }
 }
 
 fn on_cube_boundary(x: [f64; 3]) -> bool {
-    x.iter()
-        .any(|&c| c.abs() < 1e-12 || (c - 1.0).abs() < 1e-12)
+    x.iter().any(|&c| c.abs() < 1e-12 || (c - 1.0).abs() < 1e-12)
 }
 
-const STRAIN_3D: [f64; 6] = [
-    2e-3,
-    1.5e-3,
-    1.1e-3,
-    -1e-3 + 0.3e-3,
-    -0.7e-3 + 0.6e-3,
-    0.5e-3 - 0.4e-3,
-];
+const STRAIN_3D: [f64; 6] = [2e-3, 1.5e-3, 1.1e-3, -1e-3 + 0.3e-3, -0.7e-3 + 0.6e-3, 0.5e-3 - 0.4e-3];
 
 #[test]
 fn tet4_patch_test() {
-    check(
-        Kinematics::Solid3D,
-        structured_cube(3, false, 0.25),
-        field_3d,
-        on_cube_boundary,
-        STRAIN_3D,
-    );
+    check(Kinematics::Solid3D, structured_cube(3, false, 0.25), field_3d, on_cube_boundary, STRAIN_3D);
 }
 
 #[test]
 fn tet10_patch_test() {
-    check(
-        Kinematics::Solid3D,
-        structured_cube(2, true, 0.25),
-        field_3d,
-        on_cube_boundary,
-        STRAIN_3D,
-    );
+    check(Kinematics::Solid3D, structured_cube(2, true, 0.25), field_3d, on_cube_boundary, STRAIN_3D);
 }
 
 fn on_rect_boundary(x: [f64; 3]) -> bool {
-    (x[0] - 0.5).abs() < 1e-12
-        || (x[0] - 1.5).abs() < 1e-12
-        || x[1].abs() < 1e-12
-        || (x[1] - 1.0).abs() < 1e-12
+    (x[0] - 0.5).abs() < 1e-12 || (x[0] - 1.5).abs() < 1e-12 || x[1].abs() < 1e-12 || (x[1] - 1.0).abs() < 1e-12
 }
 
 #[test]

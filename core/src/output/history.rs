@@ -15,19 +15,12 @@ pub struct HistoryWriter {
 impl HistoryWriter {
     /// Creates the file with its header line.
     pub fn create(path: &Path, columns: Vec<String>) -> Result<Self> {
-        let err = |source| CoreError::Write {
-            path: path.to_path_buf(),
-            source,
-        };
+        let err = |source| CoreError::Write { path: path.to_path_buf(), source };
         let file = File::create(path).map_err(err)?;
         let mut file = BufWriter::new(file);
         writeln!(file, "{}", columns.join(",")).map_err(err)?;
         file.flush().map_err(err)?;
-        Ok(Self {
-            path: path.to_path_buf(),
-            columns,
-            file,
-        })
+        Ok(Self { path: path.to_path_buf(), columns, file })
     }
 
     pub fn columns(&self) -> &[String] {
@@ -36,15 +29,8 @@ impl HistoryWriter {
 
     /// Appends one row (same length as the header) and flushes it to disk.
     pub fn append(&mut self, row: &[f64]) -> Result<()> {
-        assert_eq!(
-            row.len(),
-            self.columns.len(),
-            "history row does not match its header"
-        );
-        let err = |source| CoreError::Write {
-            path: self.path.clone(),
-            source,
-        };
+        assert_eq!(row.len(), self.columns.len(), "history row does not match its header");
+        let err = |source| CoreError::Write { path: self.path.clone(), source };
         let line: Vec<String> = row.iter().map(|v| format!("{v:.10e}")).collect();
         writeln!(self.file, "{}", line.join(",")).map_err(err)?;
         self.file.flush().map_err(err)?;

@@ -6,8 +6,8 @@ use crate::error::{CoreError, Result};
 use crate::mesh::CellType;
 use std::path::{Path, PathBuf};
 use vtkio::model::{
-    Attribute, Attributes, ByteOrder, CellType as VtkCell, Cells, DataArray, DataSet, ElementType,
-    IOBuffer, UnstructuredGridPiece, Version, VertexNumbers, Vtk,
+    Attribute, Attributes, ByteOrder, CellType as VtkCell, Cells, DataArray, DataSet, ElementType, IOBuffer,
+    UnstructuredGridPiece, Version, VertexNumbers, Vtk,
 };
 
 /// A named field with `n_components` numbers per point or per cell.
@@ -20,11 +20,7 @@ pub struct Field {
 
 impl Field {
     pub fn new(name: impl Into<String>, n_components: usize, values: Vec<f64>) -> Self {
-        Self {
-            name: name.into(),
-            n_components,
-            values,
-        }
+        Self { name: name.into(), n_components, values }
     }
 }
 
@@ -50,18 +46,11 @@ pub struct CellList<'a> {
 
 fn attribute(f: &Field) -> Attribute {
     let elem = match f.n_components {
-        1 => ElementType::Scalars {
-            num_comp: 1,
-            lookup_table: None,
-        },
+        1 => ElementType::Scalars { num_comp: 1, lookup_table: None },
         3 => ElementType::Vectors,
         n => ElementType::Generic(n as u32),
     };
-    Attribute::DataArray(DataArray {
-        name: f.name.clone(),
-        elem,
-        data: IOBuffer::F64(f.values.clone()),
-    })
+    Attribute::DataArray(DataArray { name: f.name.clone(), elem, data: IOBuffer::F64(f.values.clone()) })
 }
 
 /// Writes an unstructured grid with point and cell fields to `path` (atomically).
@@ -91,13 +80,7 @@ pub fn write_vtu(
     }
     let piece = UnstructuredGridPiece {
         points: IOBuffer::F64(points.iter().flatten().copied().collect()),
-        cells: Cells {
-            cell_verts: VertexNumbers::XML {
-                connectivity,
-                offsets,
-            },
-            types,
-        },
+        cells: Cells { cell_verts: VertexNumbers::XML { connectivity, offsets }, types },
         data: Attributes {
             point: point_fields.iter().map(attribute).collect(),
             cell: cell_fields.iter().map(attribute).collect(),
@@ -111,10 +94,8 @@ pub fn write_vtu(
         file_path: None,
     };
     let mut bytes = Vec::new();
-    vtk.write_xml(&mut bytes).map_err(|e| CoreError::Write {
-        path: path.to_path_buf(),
-        source: std::io::Error::other(e.to_string()),
-    })?;
+    vtk.write_xml(&mut bytes)
+        .map_err(|e| CoreError::Write { path: path.to_path_buf(), source: std::io::Error::other(e.to_string()) })?;
     write_atomically(path, &bytes)
 }
 
@@ -141,10 +122,7 @@ pub struct PvdSeries {
 
 impl PvdSeries {
     pub fn new(path: PathBuf) -> Self {
-        Self {
-            path,
-            entries: Vec::new(),
-        }
+        Self { path, entries: Vec::new() }
     }
 
     /// Adds a dataset (file name relative to the `.pvd`) at `time` and rewrites the collection.
@@ -154,11 +132,39 @@ impl PvdSeries {
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n",
         );
         for (t, f) in &self.entries {
-            xml.push_str(&format!(
-                "    <DataSet timestep=\"{t:.12e}\" group=\"\" part=\"0\" file=\"{f}\"/>\n"
-            ));
+            xml.push_str(&format!("    <DataSet timestep=\"{t:.12e}\" group=\"\" part=\"0\" file=\"{f}\"/>\n"));
         }
         xml.push_str("  </Collection>\n</VTKFile>\n");
         write_atomically(&self.path, xml.as_bytes())
     }
+}
+
+/// Writes points (as VTK vertices) with point fields to `path` (atomically): interface
+/// integration points, asperities.
+pub fn write_points_vtu(path: &Path, points: &[[f64; 3]], fields: &[Field]) -> Result<()> {
+    for f in fields {
+        check_len(path, f, points.len())?;
+    }
+    let piece = UnstructuredGridPiece {
+        points: IOBuffer::F64(points.iter().flatten().copied().collect()),
+        cells: Cells {
+            cell_verts: VertexNumbers::XML {
+                connectivity: (0..points.len() as u64).collect(),
+                offsets: (1..=points.len() as u64).collect(),
+            },
+            types: vec![VtkCell::Vertex; points.len()],
+        },
+        data: Attributes { point: fields.iter().map(attribute).collect(), cell: Vec::new() },
+    };
+    let vtk = Vtk {
+        version: Version::new((1, 0)),
+        title: String::new(),
+        byte_order: ByteOrder::LittleEndian,
+        data: DataSet::inline(piece),
+        file_path: None,
+    };
+    let mut bytes = Vec::new();
+    vtk.write_xml(&mut bytes)
+        .map_err(|e| CoreError::Write { path: path.to_path_buf(), source: std::io::Error::other(e.to_string()) })?;
+    write_atomically(path, &bytes)
 }

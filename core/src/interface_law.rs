@@ -1,0 +1,92 @@
+//! The interface-law trait: a law maps a gap (and its history) to a traction or a force, with
+//! its tangent, the way a material maps strain to stress.
+//!
+//! Sign conventions: the gap g is positive when the surfaces are apart; the normal value is
+//! positive when it pushes the surfaces apart (compressive contact), negative when it pulls them
+//! together (adhesion). State follows the same trial/commit/roll-back lifecycle as materials.
+
+/// What the law's value means.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LawKind {
+    /// A traction (force per area), integrated over the interface surface.
+    TractionPerArea,
+    /// A force per discrete point (e.g. one nano-asperity).
+    ForcePerPoint,
+}
+
+/// A parameter a law accepts, so hosts can validate case files generically.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParameterSpec {
+    pub name: &'static str,
+    pub unit: &'static str,
+    pub description: &'static str,
+    /// `None`: the parameter is required.
+    pub default: Option<f64>,
+    /// Inclusive bounds.
+    pub min: f64,
+    pub max: f64,
+}
+
+/// The result of one evaluation.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct LawResponse {
+    /// Normal traction or force (positive pushes apart).
+    pub value: f64,
+    /// d value / d gap.
+    pub tangent: f64,
+    /// Whether the point counts as in contact.
+    pub in_contact: bool,
+    /// Contact area carried by this point (force-per-point laws; 0 for traction laws, whose
+    /// area is the integration weight of the point when in contact).
+    pub area: f64,
+}
+
+/// Why a law could not be evaluated.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct LawError(pub String);
+
+/// A normal interface law.
+pub trait InterfaceLaw: Send + Sync {
+    fn name(&self) -> &str;
+    fn kind(&self) -> LawKind;
+    fn n_state(&self) -> usize {
+        0
+    }
+    fn initialize_state(&self, state: &mut [f64]) {
+        state.fill(0.0);
+    }
+    /// Value and tangent at gap `gap` from the committed state; writes the trial state.
+    fn evaluate(&self, gap: f64, state_committed: &[f64], state_trial: &mut [f64]) -> Result<LawResponse, LawError>;
+    /// Names of the state variables, for output.
+    fn state_names(&self) -> Vec<&'static str> {
+        Vec::new()
+    }
+}
+
+/// Checks `given` (name, value) pairs against `specs`: unknown names, missing required values
+/// and out-of-range values are errors naming the parameter. Returns values in `specs` order.
+pub fn resolve_parameters(law: &str, specs: &[ParameterSpec], given: &[(String, f64)]) -> Result<Vec<f64>, String> {
+    for (name, _) in given {
+        if !specs.iter().any(|s| s.name == name) {
+            let known: Vec<&str> = specs.iter().map(|s| s.name).collect();
+            return Err(format!("law '{law}' has no parameter '{name}' (known: {})", known.join(", ")));
+        }
+    }
+    specs
+        .iter()
+        .map(|s| {
+            let v = given.iter().find(|(n, _)| n == s.name).map(|(_, v)| *v).or(s.default);
+            let v = v.ok_or_else(|| {
+                format!("law '{law}' needs parameter '{}' ({}, in {})", s.name, s.description, s.unit)
+            })?;
+            if !(v >= s.min && v <= s.max) {
+                return Err(format!(
+                    "law '{law}': parameter '{}' = {v} is outside its range [{}, {}] ({})",
+                    s.name, s.min, s.max, s.unit
+                ));
+            }
+            Ok(v)
+        })
+        .collect()
+}
