@@ -225,6 +225,16 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
 
     let mut t = 0.0;
     let mut failure: Option<(f64, String)> = None;
+    let mut last_increment: Option<(Vec<f64>, f64)> = None;
+    let breakpoints: Vec<f64> = model
+        .prescribed()
+        .iter()
+        .map(|p| p.amplitude.clone())
+        .chain(model.loads.iter().map(|l| l.amplitude.clone()))
+        .chain(model.contributions.iter().flat_map(|c| c.amplitudes()))
+        .flat_map(|a| a.breakpoints_between(0.0, f64::INFINITY).collect::<Vec<_>>())
+        .chain(case.case.steps.iter().map(|s| s.end_time))
+        .collect();
     'steps: for (si, (step, inc)) in case.case.steps.iter().zip(&incrementations).enumerate() {
         let mut dt = inc.initial;
         let mut since_output = 0;
@@ -232,22 +242,25 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         while t < step.end_time - 1e-12 * t_end {
             let mut target = (t + dt).min(step.end_time);
             // land on amplitude breakpoints so load reversals are exact
-            for a in model
-                .prescribed()
-                .iter()
-                .map(|p| p.amplitude.clone())
-                .chain(model.loads.iter().map(|l| l.amplitude.clone()))
-            {
-                if let Some(b) = a.breakpoints_between(t + 1e-12 * t_end, target).next() {
-                    target = target.min(b);
+            for &b in &breakpoints {
+                if b > t + 1e-12 * t_end && b < target {
+                    target = b;
                 }
             }
             if step.end_time - target < 1e-3 * dt {
                 target = step.end_time;
             }
             let u_norm = model.displacement.iter().map(|x| x * x).sum::<f64>().sqrt();
+            // Predictor: extrapolate the last converged increment (not across a reversal).
+            if let Some((du, dt_last)) = &last_increment {
+                model.update_free(du, (target - t) / dt_last);
+            }
             match solve_increment(model, &mut solver, target, &newton, u_norm) {
                 Ok(report) => {
+                    let du: Vec<f64> =
+                        model.free_dofs().iter().map(|&g| model.displacement[g] - committed_free(model, g)).collect();
+                    let reversal = breakpoints.iter().any(|&b| (b - target).abs() <= 1e-12 * t_end.max(1.0));
+                    last_increment = if reversal { None } else { Some((du, target - t)) };
                     model.commit();
                     t = target;
                     summary.increments += 1;
@@ -275,6 +288,7 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                 }
                 Err(e) => {
                     model.rollback();
+                    last_increment = None;
                     summary.cut_increments += 1;
                     dt *= inc.cut_factor;
                     bar.set_message(format!("{step_name}: cut to dt = {dt:.2e} at t = {t:.4} ({e})"));
@@ -303,4 +317,9 @@ fn write_summary(out: &Path, summary: &RunSummary) -> Result<()> {
     let json = serde_json::to_string_pretty(summary).expect("summary serializes");
     write_atomically(&out.join("summary.json"), json.as_bytes())?;
     Ok(())
+}
+
+/// The committed value of global dof `g` (the model keeps it for roll-back).
+fn committed_free(model: &stiction_core::model::Model, g: usize) -> f64 {
+    model.committed_displacement()[g]
 }

@@ -91,6 +91,10 @@ pub trait Contribution: Send {
     ) -> Result<()>;
     fn commit(&mut self) {}
     fn rollback(&mut self) {}
+    /// Amplitudes this contribution follows (their breakpoints are landed on exactly).
+    fn amplitudes(&self) -> Vec<Arc<Amplitude>> {
+        Vec::new()
+    }
     /// Named scalars for `history.csv` at the committed state.
     fn history(&self) -> Vec<(String, f64)> {
         Vec::new()
@@ -471,6 +475,11 @@ impl Model {
         }
         self.displacement.copy_from_slice(&self.displacement_committed);
         self.time = self.time_committed;
+    }
+
+    /// Displacement at the last commit.
+    pub fn committed_displacement(&self) -> &[f64] {
+        &self.displacement_committed
     }
 
     /// Reaction (internal minus external force) summed over `nodes`, per component.

@@ -255,6 +255,10 @@ impl Contribution for RigidFlat {
         Ok(())
     }
 
+    fn amplitudes(&self) -> Vec<Arc<Amplitude>> {
+        vec![self.approach_amplitude.clone()]
+    }
+
     fn commit(&mut self) {
         self.state_committed.copy_from_slice(&self.state_trial);
         self.committed_summary = self.trial_summary;
