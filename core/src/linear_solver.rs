@@ -36,7 +36,7 @@ pub struct SparseSolver {
 impl SparseSolver {
     /// Symbolic analysis of `pattern` (done once per topology).
     pub fn new(pattern: &SparsityPattern) -> Result<Self> {
-        let par = Par::Seq;
+        let par = Par::rayon(0);
         let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
         let symbolic =
             factorize_symbolic_cholesky(sym, Side::Lower, SymmetricOrdering::Amd, CholeskySymbolicParams::default())

@@ -3,6 +3,7 @@
 //! by a hash of the inputs.
 
 pub mod error;
+pub mod generate;
 pub mod geo;
 pub mod msh;
 pub mod physical_names;
