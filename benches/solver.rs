@@ -27,7 +27,9 @@ fn main() {
         if x[2] < 1e-12 || x[2] > 1.0 - 1e-12 {
             for c in 0..3 {
                 let scale = if x[2] > 0.5 && c == 0 { 0.02 } else { 0.0 };
-                model.prescribe(Prescribed { dof: i * 3 + c, scale, amplitude: ramp.clone(), source: "bench".into() }).unwrap();
+                model
+                    .prescribe(Prescribed { dof: i * 3 + c, scale, amplitude: ramp.clone(), source: "bench".into() })
+                    .unwrap();
             }
         }
     }
@@ -63,8 +65,14 @@ fn main() {
     let t = Instant::now();
     solver.solve_in_place(&mut rhs).unwrap();
     let t_solve = t.elapsed().as_secs_f64();
-    println!("tet10 cube n = {n}: {} cells, {} nodes, {} free dofs, {} matrix entries, {} factor entries ({kind:?})",
-        model.sets[0].n_cells(), mesh.nodes.len(), model.n_free(), model.pattern().nnz(), solver.factor_nnz());
+    println!(
+        "tet10 cube n = {n}: {} cells, {} nodes, {} free dofs, {} matrix entries, {} factor entries ({kind:?})",
+        model.sets[0].n_cells(),
+        mesh.nodes.len(),
+        model.n_free(),
+        model.pattern().nnz(),
+        solver.factor_nnz()
+    );
     println!("threads (rayon): {}", rayon_threads());
     println!("mesh generation          {t_mesh:8.3} s");
     println!("pattern + slot maps      {t_pattern:8.3} s  (once per topology)");

@@ -131,4 +131,3 @@ pub fn structured_rectangle(n: usize, r0: f64, w: f64, hgt: f64, quadratic: bool
         source: "structured rectangle".into(),
     }
 }
-
