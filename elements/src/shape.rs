@@ -148,3 +148,31 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod vtk_order_tests {
+    use super::reference_nodes;
+    use stiction_core::mesh::CellType;
+    use stiction_core::output::vtk::vtk_cell;
+
+    /// VTK's quadratic cells place mid-edge node k >= corners on edge VTK_EDGES[k - corners];
+    /// the permutation must pick the gmsh node at that edge's midpoint.
+    #[test]
+    fn gmsh_to_vtk_permutation_puts_midside_nodes_on_vtk_edges() {
+        let vtk_edges: [(CellType, &[(usize, usize)]); 3] = [
+            (CellType::Tet10, &[(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]),
+            (CellType::Tri6, &[(0, 1), (1, 2), (2, 0)]),
+            (CellType::Line3, &[(0, 1)]),
+        ];
+        for (cell, edges) in vtk_edges {
+            let x = reference_nodes(cell);
+            let (_, perm) = vtk_cell(cell);
+            let nc = cell.n_corners();
+            for (k, &(a, b)) in edges.iter().enumerate() {
+                let mid: Vec<f64> = (0..3).map(|d| 0.5 * (x[perm[a]][d] + x[perm[b]][d])).collect();
+                let node = x[perm[nc + k]];
+                assert!((0..3).all(|d| (node[d] - mid[d]).abs() < 1e-15), "{cell:?} VTK edge {k}");
+            }
+        }
+    }
+}

@@ -1,0 +1,83 @@
+//! gmsh input (ASCII and binary MSH 4.1 read to the same mesh; .geo meshing is cached) and run
+//! output (an interrupted run keeps every converged increment).
+
+use std::process::Command;
+use stiction_meshes::{GeoOptions, mesh_geo, read_msh};
+use stiction_tests::workspace_root;
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let d = workspace_root().join("target").join("test-out").join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn ascii_and_binary_msh41_give_the_same_mesh_and_geo_meshing_is_cached() {
+    let dir = scratch("msh-formats");
+    let geo = workspace_root().join("cases/validation/cantilever.geo");
+    let opts = GeoOptions { dimension: 3, order: 2, size_factor: 2.0, parameters: vec![] };
+    let cached = mesh_geo(&geo, &opts, &dir).unwrap();
+    let stamp = std::fs::metadata(&cached).unwrap().modified().unwrap();
+    assert_eq!(mesh_geo(&geo, &opts, &dir).unwrap(), cached, "same inputs, same cache file");
+    assert_eq!(std::fs::metadata(&cached).unwrap().modified().unwrap(), stamp, "cache hit must not re-mesh");
+    let binary = dir.join("binary.msh");
+    let status = Command::new("gmsh")
+        .arg(&cached)
+        .arg("-0")
+        .arg("-bin")
+        .arg("-format")
+        .arg("msh41")
+        .arg("-o")
+        .arg(&binary)
+        .output()
+        .unwrap();
+    assert!(status.status.success());
+    let a = read_msh(&cached).unwrap();
+    let b = read_msh(&binary).unwrap();
+    assert_eq!(a.nodes.len(), b.nodes.len());
+    assert!(a.nodes.iter().zip(&b.nodes).all(|(p, q)| (0..3).all(|k| (p[k] - q[k]).abs() < 1e-12)));
+    assert_eq!(a.groups, b.groups);
+    let names: Vec<&str> = a.groups.iter().map(|g| g.name.as_str()).collect();
+    assert!(names.contains(&"body") && names.contains(&"clamp") && names.contains(&"tip"), "{names:?}");
+    assert_eq!(a.blocks.len(), b.blocks.len());
+    for (x, y) in a.blocks.iter().zip(&b.blocks) {
+        assert_eq!((x.cell_type, x.physical_tag, &x.connectivity), (y.cell_type, y.physical_tag, &y.connectivity));
+    }
+    // 10-node tets with positive volume in gmsh order
+    assert!(a.blocks.iter().any(|b| b.cell_type == stiction_core::mesh::CellType::Tet10));
+}
+
+#[test]
+fn a_failed_run_keeps_its_converged_increments() {
+    // Yield stress so low and increments so few that the run must give up part way: the
+    // minimum increment equals the initial one, so the first failure ends the run.
+    let out = scratch("failed-run");
+    let case = workspace_root().join("cases/validation/jackson-green.toml");
+    let sets: Vec<String> = [
+        "mesh.parameters.h_contact=8.0",
+        "solver.max_iterations=3",
+        "steps.0.initial_increment=0.05",
+        "steps.0.min_increment=0.05",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let loaded = stiction::case::load(&case, &sets).unwrap();
+    let options = stiction::run::RunOptions { out: Some(out.clone()), progress: false };
+    let err = stiction::run::run(&loaded, &options).unwrap_err();
+    assert_eq!(err.exit_code(), 1, "{err}");
+    let text = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let rows = text.lines().count() - 1;
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"status\": \"failed\""), "{summary}");
+    let vtus = std::fs::read_dir(&out)
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "vtu"))
+        .count();
+    let pvd = std::fs::read_to_string(out.join("jackson-green.pvd")).unwrap();
+    println!("failed run kept {rows} history rows and {vtus} vtu files: {err}");
+    assert!(rows >= 2, "the converged increments before the failure must stay: {rows}");
+    assert_eq!(pvd.matches("<DataSet").count() * 2, vtus, "the .pvd lists exactly the written solid frames");
+    assert!(!std::fs::read_dir(&out).unwrap().any(|e| e.unwrap().path().to_string_lossy().ends_with(".tmp")));
+}
