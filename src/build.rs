@@ -380,6 +380,8 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
 
     // Interfaces.
     let modulus = materials.values().map(|m| m.stiffness_scale()).fold(0.0, f64::max);
+    let plugin_dirs: Vec<PathBuf> = c.plugin_path.iter().map(|p| case.base_dir().join(p)).collect();
+    let registry = crate::laws::LawRegistry::new(&plugin_dirs);
     for (i, spec) in c.interfaces.iter().enumerate() {
         let key = format!("interfaces[{i}]");
         if spec.kind != "rigid-flat" {
@@ -390,8 +392,14 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
         let face_size = mean_edge_length(&mesh, group)
             .ok_or_else(|| case.error(format!("{key}.surface"), format!("group '{}' has no faces", spec.surface)))?;
         let given: Vec<(String, f64)> = spec.parameters.iter().map(|(k, v)| (k.clone(), *v)).collect();
-        let law = crate::laws::make_law(&spec.law, &given, &crate::laws::LawContext { modulus, face_size })
-            .map_err(|m| case.error(format!("{key}.law"), m))?;
+        let law = crate::laws::make_law(
+            &registry,
+            &spec.law,
+            case.base_dir(),
+            &given,
+            &crate::laws::LawContext { modulus, face_size },
+        )
+        .map_err(|m| case.error(format!("{key}.law"), m))?;
         let normal = match (&spec.normal, kin) {
             (None, Kinematics::Solid3D) => [0.0, 0.0, 1.0],
             (None, Kinematics::Axisymmetric) => [0.0, 1.0, 0.0],

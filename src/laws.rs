@@ -1,8 +1,18 @@
-//! The interface laws a case can name, with their parameter lists. Laws are linked statically
-//! here; the plugin ABI (dynamic loading of users' laws) is tracked in the interfaces issue.
+//! Interface-law lookup. Built-in laws are linked statically and used through the same C ABI
+//! as plugins; other laws are found by name on the plugin search path, or loaded from an
+//! explicit library path:
+//! 1. directories listed in the case's `plugin_path` (relative to the case file);
+//! 2. directories in the environment variable `STICTION_PLUGIN_PATH` (separated by ':');
+//! 3. the directory of the `stiction` executable (where `cargo build` puts workspace plugins).
+//!
+//! A parameter named `penalty` whose value is 0 is replaced by 100 E / h (E: the stiffest
+//! material's modulus, h: the interface's mean face size).
 
-use std::sync::Arc;
-use stiction_core::interface_law::{InterfaceLaw, ParameterSpec, resolve_parameters};
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
+use stiction_core::interface_law::{InterfaceLaw, resolve_parameters};
+use stiction_interfaces::plugin::LawLibrary;
+use stiction_law_sdk::abi::DescriptorHolder;
 
 /// Context a law may need for defaults.
 pub struct LawContext {
@@ -12,30 +22,119 @@ pub struct LawContext {
     pub face_size: f64,
 }
 
-/// Names and parameter lists of the known laws.
-pub fn known_laws() -> Vec<(&'static str, Vec<ParameterSpec>)> {
-    vec![
-        (stiction_law_frictionless_contact::NAME, stiction_law_frictionless_contact::parameters()),
-        (stiction_law_lennard_jones::NAME, stiction_law_lennard_jones::parameters()),
-    ]
+/// Descriptors of the statically linked laws, built once per process. Built-in laws go
+/// through the same C functions as plugins.
+fn builtin_holders() -> &'static [DescriptorHolder] {
+    static HOLDERS: OnceLock<Vec<DescriptorHolder>> = OnceLock::new();
+    HOLDERS.get_or_init(|| {
+        vec![
+            DescriptorHolder::new::<stiction_law_frictionless_contact::FrictionlessContact>(),
+            DescriptorHolder::new::<stiction_law_lennard_jones::LennardJones>(),
+        ]
+    })
 }
 
-/// Creates a law from its name and parameters (validated against its parameter list).
-pub fn make_law(name: &str, given: &[(String, f64)], context: &LawContext) -> Result<Arc<dyn InterfaceLaw>, String> {
-    let laws = known_laws();
-    let Some((_, specs)) = laws.iter().find(|(n, _)| *n == name) else {
-        let names: Vec<&str> = laws.iter().map(|(n, _)| *n).collect();
-        return Err(format!("unknown interface law '{name}' (known: {})", names.join(", ")));
-    };
-    let values = resolve_parameters(name, specs, given)?;
-    Ok(match name {
-        stiction_law_frictionless_contact::NAME => {
-            let k = if values[0] > 0.0 { values[0] } else { 100.0 * context.modulus / context.face_size };
-            Arc::new(stiction_law_frictionless_contact::FrictionlessContact::new(k).map_err(|e| e.0)?)
+/// Built-in and discoverable laws.
+pub struct LawRegistry {
+    builtin: Vec<Arc<LawLibrary>>,
+    search_dirs: Vec<PathBuf>,
+}
+
+fn shared_library(path: &Path) -> bool {
+    matches!(path.extension().and_then(|e| e.to_str()), Some("so" | "dylib" | "dll"))
+}
+
+impl LawRegistry {
+    /// The registry with the built-in laws and the search path (case directories first).
+    pub fn new(case_dirs: &[PathBuf]) -> Self {
+        let builtin = builtin_holders()
+            .iter()
+            // SAFETY: the holders live in a process-wide static.
+            .map(|h| {
+                Arc::new(unsafe { LawLibrary::from_static(h.descriptor()) }.expect("built-in laws match the host ABI"))
+            })
+            .collect();
+        let mut search_dirs: Vec<PathBuf> = case_dirs.to_vec();
+        if let Some(env) = std::env::var_os("STICTION_PLUGIN_PATH") {
+            search_dirs.extend(std::env::split_paths(&env));
         }
-        stiction_law_lennard_jones::NAME => {
-            Arc::new(stiction_law_lennard_jones::LennardJones::new(values[0], values[1]).map_err(|e| e.0)?)
+        if let Some(dir) = std::env::current_exe().ok().and_then(|e| e.parent().map(Path::to_path_buf)) {
+            search_dirs.push(dir);
         }
-        _ => unreachable!("listed above"),
-    })
+        Self { builtin, search_dirs }
+    }
+
+    pub fn builtin(&self) -> &[Arc<LawLibrary>] {
+        &self.builtin
+    }
+    pub fn search_dirs(&self) -> &[PathBuf] {
+        &self.search_dirs
+    }
+
+    /// Every shared library on the search path, opened (or the reason it could not be).
+    pub fn discover(&self) -> Vec<(PathBuf, Result<Arc<LawLibrary>, String>)> {
+        let mut found = Vec::new();
+        for dir in &self.search_dirs {
+            let Ok(entries) = std::fs::read_dir(dir) else { continue };
+            let mut paths: Vec<PathBuf> =
+                entries.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| shared_library(p)).collect();
+            paths.sort();
+            for p in paths {
+                let r = LawLibrary::open(&p).map(Arc::new).map_err(|e| e.to_string());
+                found.push((p, r));
+            }
+        }
+        found
+    }
+
+    /// A law by name (built-in first, then the search path) or by library path.
+    pub fn find(&self, name_or_path: &str, base: &Path) -> Result<Arc<LawLibrary>, String> {
+        let as_path = Path::new(name_or_path);
+        if shared_library(as_path) || name_or_path.contains('/') {
+            let p = if as_path.is_absolute() { as_path.to_path_buf() } else { base.join(as_path) };
+            return LawLibrary::open(&p).map(Arc::new).map_err(|e| e.to_string());
+        }
+        if let Some(l) = self.builtin.iter().find(|l| l.name == name_or_path) {
+            return Ok(l.clone());
+        }
+        let mut problems = Vec::new();
+        for (path, r) in self.discover() {
+            match r {
+                Ok(l) if l.name == name_or_path => return Ok(l),
+                Ok(_) => {}
+                Err(e) if e.contains("ABI version") || e.contains("bytes, expected") => problems.push(e),
+                Err(_) => {}
+            }
+            let _ = path;
+        }
+        let builtin: Vec<&str> = self.builtin.iter().map(|l| l.name.as_str()).collect();
+        let dirs: Vec<String> = self.search_dirs.iter().map(|d| d.display().to_string()).collect();
+        let mut msg = format!(
+            "no interface law '{name_or_path}': not built in ({}) and not found in the plugin search path [{}] (set STICTION_PLUGIN_PATH or the case's plugin_path, or give the library's path)",
+            builtin.join(", "),
+            dirs.join(", ")
+        );
+        for p in problems {
+            msg.push_str(&format!("; {p}"));
+        }
+        Err(msg)
+    }
+}
+
+/// Creates a law instance from its parameters (validated against the law's parameter list).
+pub fn make_law(
+    registry: &LawRegistry,
+    name: &str,
+    base: &Path,
+    given: &[(String, f64)],
+    context: &LawContext,
+) -> Result<Arc<dyn InterfaceLaw>, String> {
+    let library = registry.find(name, base)?;
+    let mut values = resolve_parameters(&library.name, &library.parameters, given)?;
+    for (spec, v) in library.parameters.iter().zip(values.iter_mut()) {
+        if spec.name == "penalty" && *v == 0.0 {
+            *v = 100.0 * context.modulus / context.face_size;
+        }
+    }
+    Ok(Arc::new(library.instantiate(&values).map_err(|e| e.to_string())?))
 }

@@ -45,6 +45,99 @@ enum Command {
         #[arg(long = "set", value_name = "KEY=VALUE")]
         sets: Vec<String>,
     },
+    /// List the interface laws: built in, and plugins found on the search path (directories
+    /// given here, then STICTION_PLUGIN_PATH, then the directory of this program).
+    Plugins {
+        /// Extra directories to search.
+        #[arg(long = "plugin-path", value_name = "DIR")]
+        dirs: Vec<PathBuf>,
+    },
+    /// Plugin tools.
+    Plugin {
+        #[command(subcommand)]
+        command: PluginCommand,
+    },
+}
+
+#[derive(Subcommand)]
+enum PluginCommand {
+    /// Conformance run for a law (a name or a library path): tangent vs finite differences along
+    /// a load-unload-reload path, determinism, state round trip, zero and extreme gaps.
+    Check {
+        /// Law name or path to a plugin library.
+        law: String,
+        /// Parameter values (required ones that have no default must be given).
+        #[arg(long = "param", value_name = "NAME=VALUE")]
+        params: Vec<String>,
+        /// Gap scale of the test path (default 1; use the law's length scale, e.g. z0).
+        #[arg(long, default_value_t = 1.0)]
+        gap_scale: f64,
+        /// Extra directories to search.
+        #[arg(long = "plugin-path", value_name = "DIR")]
+        dirs: Vec<PathBuf>,
+    },
+}
+
+fn describe(l: &stiction_interfaces::plugin::LawLibrary) {
+    println!("{} {} ({:?}, {} state variables) [{}]", l.name, l.version, l.kind, l.n_state, l.origin);
+    for p in &l.parameters {
+        let default = p.default.map(|d| format!("default {d}")).unwrap_or_else(|| "required".into());
+        println!("    {} [{}]: {}; {default}; range [{}, {}]", p.name, p.unit, p.description, p.min, p.max);
+    }
+}
+
+fn list_plugins(dirs: &[PathBuf]) {
+    let registry = stiction::laws::LawRegistry::new(dirs);
+    println!("built-in laws:");
+    for l in registry.builtin() {
+        describe(l);
+    }
+    let dirs: Vec<String> = registry.search_dirs().iter().map(|d| d.display().to_string()).collect();
+    println!("plugins on the search path [{}]:", dirs.join(", "));
+    let found = registry.discover();
+    if found.is_empty() {
+        println!("  (none)");
+    }
+    for (path, r) in found {
+        match r {
+            Ok(l) => describe(&l),
+            Err(e) => println!("  {}: not usable: {e}", path.display()),
+        }
+    }
+}
+
+fn plugin_check(law: &str, params: &[String], gap_scale: f64, dirs: &[PathBuf]) -> ExitCode {
+    let registry = stiction::laws::LawRegistry::new(dirs);
+    let mut given = Vec::new();
+    for p in params {
+        match p.split_once('=').map(|(k, v)| (k.trim(), v.trim().parse::<f64>())) {
+            Some((k, Ok(v))) => given.push((k.to_string(), v)),
+            _ => {
+                eprintln!("error: --param {p}: expected NAME=NUMBER");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    if !(gap_scale > 0.0) {
+        eprintln!("error: --gap-scale must be positive");
+        return ExitCode::from(2);
+    }
+    let context = stiction::laws::LawContext { modulus: 1.0, face_size: 1.0 };
+    let instance = match stiction::laws::make_law(&registry, law, std::path::Path::new("."), &given, &context) {
+        Ok(l) => l,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    println!("checking law '{}' (gap scale {gap_scale})", instance.name());
+    let results = stiction::plugin_check::check(&instance, gap_scale);
+    let failed = results.iter().filter(|r| !r.passed).count();
+    for r in &results {
+        println!("  {} {}: {}", if r.passed { "PASS" } else { "FAIL" }, r.name, r.detail);
+    }
+    println!("{} passed, {} failed", results.len() - failed, failed);
+    if failed == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) }
 }
 
 fn main() -> ExitCode {
@@ -83,6 +176,13 @@ fn main() -> ExitCode {
             );
             Ok(())
         })(),
+        Command::Plugins { dirs } => {
+            list_plugins(&dirs);
+            Ok(())
+        }
+        Command::Plugin { command: PluginCommand::Check { law, params, gap_scale, dirs } } => {
+            return plugin_check(&law, &params, gap_scale, &dirs);
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -17,9 +17,9 @@ pub enum LawKind {
 /// A parameter a law accepts, so hosts can validate case files generically.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParameterSpec {
-    pub name: &'static str,
-    pub unit: &'static str,
-    pub description: &'static str,
+    pub name: String,
+    pub unit: String,
+    pub description: String,
     /// `None`: the parameter is required.
     pub default: Option<f64>,
     /// Inclusive bounds.
@@ -59,7 +59,7 @@ pub trait InterfaceLaw: Send + Sync {
     /// Value and tangent at gap `gap` from the committed state; writes the trial state.
     fn evaluate(&self, gap: f64, state_committed: &[f64], state_trial: &mut [f64]) -> Result<LawResponse, LawError>;
     /// Names of the state variables, for output.
-    fn state_names(&self) -> Vec<&'static str> {
+    fn state_names(&self) -> Vec<String> {
         Vec::new()
     }
 }
@@ -68,15 +68,15 @@ pub trait InterfaceLaw: Send + Sync {
 /// and out-of-range values are errors naming the parameter. Returns values in `specs` order.
 pub fn resolve_parameters(law: &str, specs: &[ParameterSpec], given: &[(String, f64)]) -> Result<Vec<f64>, String> {
     for (name, _) in given {
-        if !specs.iter().any(|s| s.name == name) {
-            let known: Vec<&str> = specs.iter().map(|s| s.name).collect();
+        if !specs.iter().any(|s| &s.name == name) {
+            let known: Vec<&str> = specs.iter().map(|s| s.name.as_str()).collect();
             return Err(format!("law '{law}' has no parameter '{name}' (known: {})", known.join(", ")));
         }
     }
     specs
         .iter()
         .map(|s| {
-            let v = given.iter().find(|(n, _)| n == s.name).map(|(_, v)| *v).or(s.default);
+            let v = given.iter().find(|(n, _)| *n == s.name).map(|(_, v)| *v).or(s.default);
             let v = v.ok_or_else(|| {
                 format!("law '{law}' needs parameter '{}' ({}, in {})", s.name, s.description, s.unit)
             })?;

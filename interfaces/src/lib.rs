@@ -4,6 +4,7 @@
 //! * [`rigid_flat::RigidFlat`]: a body surface against a rigid plane that moves along its normal
 //!   following an approach schedule; traction laws are integrated over the surface.
 
+pub mod plugin;
 pub mod rigid_flat;
 
 pub use rigid_flat::{RigidFlat, RigidFlatSpec};

@@ -29,6 +29,9 @@ pub struct Case {
     pub boundary: Vec<BoundarySpec>,
     #[serde(default)]
     pub loads: Vec<LoadSpec>,
+    /// Extra directories searched for interface-law plugins (relative to the case file).
+    #[serde(default)]
+    pub plugin_path: Vec<PathBuf>,
     /// Interfaces: a geometry plus an interface law.
     #[serde(default)]
     pub interfaces: Vec<InterfaceSpec>,
@@ -172,7 +175,8 @@ pub struct InterfaceSpec {
     /// (default 0: approach 0 is first touch).
     #[serde(default)]
     pub initial_gap: f64,
-    /// Law name: "frictionless-contact" or "lennard-jones".
+    /// Law: a built-in name ("frictionless-contact", "lennard-jones"), a plugin's name found on
+    /// the plugin search path, or a path to a plugin library.
     pub law: String,
     /// Law parameters (validated against the law's parameter list).
     #[serde(default)]

@@ -1,50 +1,44 @@
-//! `frictionless-contact`: non-adhesive hard contact enforced by a penalty,
+//! `frictionless-contact` (the law; `plugin/` exports it as a shared library): non-adhesive hard contact enforced by a penalty,
 //! sigma(g) = k max(0, -g), d sigma / d g = -k for g < 0.
 //!
-//! Parameter `penalty` (stress per length). When it is 0 (the default) the host chooses
+//! Parameter `penalty` (stress per length). 0 (the default) asks the host to choose
 //! k = 100 E / h from the stiffest material's modulus E and the interface's face size h.
 
-use stiction_core::interface_law::{InterfaceLaw, LawError, LawKind, LawResponse, ParameterSpec};
+use stiction_law_sdk::{Law, LawKind, Parameter, Response};
 
-pub const NAME: &str = "frictionless-contact";
-
-pub fn parameters() -> Vec<ParameterSpec> {
-    vec![ParameterSpec {
-        name: "penalty",
-        unit: "stress/length",
-        description: "normal penalty stiffness k; 0 = chosen from the mesh and modulus (100 E / h)",
-        default: Some(0.0),
-        min: 0.0,
-        max: f64::INFINITY,
-    }]
-}
-
-#[derive(Debug, Clone)]
 pub struct FrictionlessContact {
     pub penalty: f64,
 }
 
-impl FrictionlessContact {
-    pub fn new(penalty: f64) -> Result<Self, LawError> {
-        if !(penalty > 0.0 && penalty.is_finite()) {
-            return Err(LawError(format!("{NAME}: penalty must be positive and finite, got {penalty}")));
-        }
-        Ok(Self { penalty })
-    }
-}
+impl Law for FrictionlessContact {
+    const NAME: &'static std::ffi::CStr = c"frictionless-contact";
+    const VERSION: &'static std::ffi::CStr = c"0.1.0";
+    const KIND: LawKind = LawKind::TractionPerArea;
+    const N_STATE: usize = 0;
 
-impl InterfaceLaw for FrictionlessContact {
-    fn name(&self) -> &str {
-        NAME
+    fn parameters() -> Vec<Parameter> {
+        vec![Parameter::optional(
+            c"penalty",
+            c"stress/length",
+            c"normal penalty stiffness k; 0 = chosen by the host (100 E / h)",
+            0.0,
+            0.0,
+            f64::INFINITY,
+        )]
     }
-    fn kind(&self) -> LawKind {
-        LawKind::TractionPerArea
+
+    fn create(p: &[f64]) -> Result<Self, String> {
+        if !(p[0] > 0.0 && p[0].is_finite()) {
+            return Err(format!("penalty must be positive and finite, got {}", p[0]));
+        }
+        Ok(Self { penalty: p[0] })
     }
-    fn evaluate(&self, gap: f64, _old: &[f64], _new: &mut [f64]) -> Result<LawResponse, LawError> {
+
+    fn evaluate(&self, gap: f64, _old: &[f64], _new: &mut [f64]) -> Result<Response, String> {
         Ok(if gap < 0.0 {
-            LawResponse { value: -self.penalty * gap, tangent: -self.penalty, in_contact: true, area: 0.0 }
+            Response { value: -self.penalty * gap, tangent: -self.penalty, in_contact: true, area: 0.0 }
         } else {
-            LawResponse::default()
+            Response::default()
         })
     }
 }
@@ -54,13 +48,13 @@ mod tests {
     use super::*;
     #[test]
     fn tangent_matches_finite_differences_away_from_the_kink() {
-        let law = FrictionlessContact::new(50.0).unwrap();
+        let law = FrictionlessContact::create(&[50.0]).unwrap();
         for g in [-0.3, -0.01, 0.02, 0.5] {
             let h = 1e-7;
             let f = |x: f64| law.evaluate(x, &[], &mut []).unwrap().value;
             let fd = (f(g + h) - f(g - h)) / (2.0 * h);
             assert!((fd - law.evaluate(g, &[], &mut []).unwrap().tangent).abs() < 1e-6);
         }
-        assert!(FrictionlessContact::new(0.0).is_err());
+        assert!(FrictionlessContact::create(&[0.0]).is_err());
     }
 }

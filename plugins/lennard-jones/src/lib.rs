@@ -1,4 +1,4 @@
-//! `lennard-jones`: adhesive traction between two half-spaces (Derjaguin approximation;
+//! `lennard-jones` (the law; `plugin/` exports it as a shared library): adhesive traction between two half-spaces (Derjaguin approximation;
 //! Greenwood 1997):
 //! p(h) = (8 w / (3 z0)) [ (z0/h)^3 - (z0/h)^9 ], positive = attraction, h = local gap.
 //! Our normal value (positive pushes apart) is sigma(h) = -p(h).
@@ -9,30 +9,7 @@
 //! of an overflow. Physical solutions stay above h_min (there sigma is already ~500x the peak
 //! adhesive stress).
 
-use stiction_core::interface_law::{InterfaceLaw, LawError, LawKind, LawResponse, ParameterSpec};
-
-pub const NAME: &str = "lennard-jones";
-
-pub fn parameters() -> Vec<ParameterSpec> {
-    vec![
-        ParameterSpec {
-            name: "w",
-            unit: "energy/area (J/m^2 = nN/nm)",
-            description: "work of adhesion",
-            default: None,
-            min: 1e-12,
-            max: f64::INFINITY,
-        },
-        ParameterSpec {
-            name: "z0",
-            unit: "length",
-            description: "equilibrium separation",
-            default: None,
-            min: 1e-12,
-            max: f64::INFINITY,
-        },
-    ]
-}
+use stiction_law_sdk::{Law, LawKind, Parameter, Response};
 
 #[derive(Debug, Clone)]
 pub struct LennardJones {
@@ -41,13 +18,6 @@ pub struct LennardJones {
 }
 
 impl LennardJones {
-    pub fn new(w: f64, z0: f64) -> Result<Self, LawError> {
-        if !(w > 0.0 && z0 > 0.0 && w.is_finite() && z0.is_finite()) {
-            return Err(LawError(format!("{NAME}: w and z0 must be positive, got w = {w}, z0 = {z0}")));
-        }
-        Ok(Self { w, z0 })
-    }
-
     /// sigma(h) = -(8 w / (3 z0)) [ (z0/h)^3 - (z0/h)^9 ] and its derivative, for h > 0.
     fn exact(&self, h: f64) -> (f64, f64) {
         let c = 8.0 * self.w / (3.0 * self.z0);
@@ -62,14 +32,28 @@ impl LennardJones {
     }
 }
 
-impl InterfaceLaw for LennardJones {
-    fn name(&self) -> &str {
-        NAME
+impl Law for LennardJones {
+    const NAME: &'static std::ffi::CStr = c"lennard-jones";
+    const VERSION: &'static std::ffi::CStr = c"0.1.0";
+    const KIND: LawKind = LawKind::TractionPerArea;
+    const N_STATE: usize = 0;
+
+    fn parameters() -> Vec<Parameter> {
+        vec![
+            Parameter::required(c"w", c"energy/area (J/m^2 = nN/nm)", c"work of adhesion", 1e-12, f64::INFINITY),
+            Parameter::required(c"z0", c"length", c"equilibrium separation", 1e-12, f64::INFINITY),
+        ]
     }
-    fn kind(&self) -> LawKind {
-        LawKind::TractionPerArea
+
+    fn create(p: &[f64]) -> Result<Self, String> {
+        let (w, z0) = (p[0], p[1]);
+        if !(w > 0.0 && z0 > 0.0 && w.is_finite() && z0.is_finite()) {
+            return Err(format!("w and z0 must be positive, got w = {w}, z0 = {z0}"));
+        }
+        Ok(Self { w, z0 })
     }
-    fn evaluate(&self, gap: f64, _old: &[f64], _new: &mut [f64]) -> Result<LawResponse, LawError> {
+
+    fn evaluate(&self, gap: f64, _old: &[f64], _new: &mut [f64]) -> Result<Response, String> {
         let h_min = 0.5 * self.z0;
         let (value, tangent) = if gap >= h_min {
             self.exact(gap)
@@ -78,7 +62,7 @@ impl InterfaceLaw for LennardJones {
             (v + t * (gap - h_min), t)
         };
         // In contact where the surfaces repel (h < z0), as in Greenwood's and Feng's analyses.
-        Ok(LawResponse { value, tangent, in_contact: gap < self.z0, area: 0.0 })
+        Ok(Response { value, tangent, in_contact: gap < self.z0, area: 0.0 })
     }
 }
 
@@ -88,7 +72,7 @@ mod tests {
 
     #[test]
     fn integral_of_attraction_is_the_work_of_adhesion() {
-        let law = LennardJones::new(1.0, 0.169).unwrap();
+        let law = LennardJones::create(&[1.0, 0.169]).unwrap();
         // integral_z0^inf p dh with p = -sigma, substitution h = z0 / s: integral_0^1 p z0/s^2 ds
         let g = stiction_core::quadrature::gauss_legendre(40);
         let mut total = 0.0;
@@ -102,7 +86,7 @@ mod tests {
 
     #[test]
     fn peak_attraction_and_tangent() {
-        let law = LennardJones::new(3.0, 0.169).unwrap();
+        let law = LennardJones::create(&[3.0, 0.169]).unwrap();
         let h_peak = 3f64.powf(1.0 / 6.0) * law.z0;
         let r = law.evaluate(h_peak, &[], &mut []).unwrap();
         assert!((-r.value - law.peak_stress()).abs() < 1e-12 * law.peak_stress());

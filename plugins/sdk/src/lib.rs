@@ -1,0 +1,120 @@
+//! The Stiction interface-law SDK: write a law as safe Rust, export it through the versioned C
+//! ABI with one macro, and the host (the `stiction` program) loads it at run time.
+//!
+//! ```ignore
+//! use stiction_law_sdk::{Law, LawKind, Parameter, Response, export_law};
+//! pub struct Spring { k: f64 }
+//! impl Law for Spring {
+//!     const NAME: &'static std::ffi::CStr = c"my-spring";
+//!     const VERSION: &'static std::ffi::CStr = c"0.1.0";
+//!     const KIND: LawKind = LawKind::TractionPerArea;
+//!     const N_STATE: usize = 0;
+//!     fn parameters() -> Vec<Parameter> { vec![Parameter::required(c"k", c"GPa/nm", c"stiffness", 0.0, f64::INFINITY)] }
+//!     fn create(p: &[f64]) -> Result<Self, String> { Ok(Spring { k: p[0] }) }
+//!     fn evaluate(&self, gap: f64, _old: &[f64], _new: &mut [f64]) -> Result<Response, String> {
+//!         Ok(Response { value: -self.k * gap.min(0.0), tangent: if gap < 0.0 { -self.k } else { 0.0 }, in_contact: gap < 0.0, area: 0.0 })
+//!     }
+//! }
+//! export_law!(Spring);
+//! ```
+//! Build the crate with `crate-type = ["cdylib", "rlib"]`; the `cdylib` is the plugin, the
+//! `rlib` lets the same law be linked statically (tests need no dynamic loading).
+//!
+//! Conventions: gap positive when open; value positive when it pushes the surfaces apart
+//! (compressive), negative when it pulls them together (adhesive); `tangent` = d value / d gap.
+//! `evaluate` must not mutate the instance (it is called from several threads) and writes the
+//! whole trial state from the committed one.
+
+pub mod abi;
+
+pub use abi::{ABI_VERSION, LawDescriptor};
+use std::ffi::CStr;
+
+/// What a law's value means.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u32)]
+pub enum LawKind {
+    /// Traction (force per area), integrated over a surface.
+    TractionPerArea = 0,
+    /// Force per discrete point (e.g. a nano-asperity).
+    ForcePerPoint = 1,
+}
+
+/// One evaluation's result.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Response {
+    pub value: f64,
+    pub tangent: f64,
+    pub in_contact: bool,
+    /// Contact area of the point (force-per-point laws).
+    pub area: f64,
+}
+
+/// A parameter the law accepts; the host validates case files against these.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Parameter {
+    pub name: &'static CStr,
+    pub unit: &'static CStr,
+    pub description: &'static CStr,
+    pub default: Option<f64>,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Parameter {
+    pub const fn required(
+        name: &'static CStr,
+        unit: &'static CStr,
+        description: &'static CStr,
+        min: f64,
+        max: f64,
+    ) -> Self {
+        Self { name, unit, description, default: None, min, max }
+    }
+    pub const fn optional(
+        name: &'static CStr,
+        unit: &'static CStr,
+        description: &'static CStr,
+        default: f64,
+        min: f64,
+        max: f64,
+    ) -> Self {
+        Self { name, unit, description, default: Some(default), min, max }
+    }
+}
+
+/// An interface law written in safe Rust.
+pub trait Law: Sized + Send + Sync {
+    const NAME: &'static CStr;
+    const VERSION: &'static CStr;
+    const KIND: LawKind;
+    /// State variables per point.
+    const N_STATE: usize;
+    fn parameters() -> Vec<Parameter>;
+    /// Creates an instance from parameter values in `parameters()` order (already range-checked
+    /// by the host; check relations between parameters here).
+    fn create(parameters: &[f64]) -> Result<Self, String>;
+    /// Initial state of a point.
+    fn initialize_state(&self, state: &mut [f64]) {
+        state.fill(0.0);
+    }
+    /// Value and tangent at `gap` from the committed state; writes the whole trial state.
+    fn evaluate(&self, gap: f64, state_committed: &[f64], state_trial: &mut [f64]) -> Result<Response, String>;
+    /// Names of the state variables (for output), `N_STATE` of them.
+    fn state_names() -> Vec<&'static CStr> {
+        Vec::new()
+    }
+}
+
+/// Exports `$law` as this library's plugin: defines the `stiction_law_descriptor` symbol.
+#[macro_export]
+macro_rules! export_law {
+    ($law:ty) => {
+        /// The plugin entry point read by the Stiction host.
+        #[unsafe(no_mangle)]
+        pub extern "C" fn stiction_law_descriptor() -> *const $crate::abi::LawDescriptor {
+            static HOLDER: ::std::sync::OnceLock<$crate::abi::DescriptorHolder> = ::std::sync::OnceLock::new();
+            HOLDER.get_or_init(|| $crate::abi::DescriptorHolder::new::<$law>()).descriptor()
+        }
+    };
+}
