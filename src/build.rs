@@ -392,11 +392,13 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
         let face_size = mean_edge_length(&mesh, group)
             .ok_or_else(|| case.error(format!("{key}.surface"), format!("group '{}' has no faces", spec.surface)))?;
         let given: Vec<(String, f64)> = spec.parameters.iter().map(|(k, v)| (k.clone(), *v)).collect();
+        let config_file = spec.config_file.as_ref().map(|f| case.base_dir().join(f));
         let law = crate::laws::make_law(
             &registry,
             &spec.law,
             case.base_dir(),
             &given,
+            config_file.as_deref(),
             &crate::laws::LawContext { modulus, face_size },
         )
         .map_err(|m| case.error(format!("{key}.law"), m))?;

@@ -121,20 +121,38 @@ impl LawRegistry {
     }
 }
 
-/// Creates a law instance from its parameters (validated against the law's parameter list).
+/// Creates a law instance from its parameters (validated against the law's parameter list)
+/// and, for laws that take one, the text of a configuration file (e.g. a calibration).
 pub fn make_law(
     registry: &LawRegistry,
     name: &str,
     base: &Path,
     given: &[(String, f64)],
+    config_file: Option<&Path>,
     context: &LawContext,
 ) -> Result<Arc<dyn InterfaceLaw>, String> {
     let library = registry.find(name, base)?;
+    let config = match (config_file, &library.config_description) {
+        (Some(path), Some(_)) => {
+            let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+            Some((path, text))
+        }
+        (None, Some(what)) => return Err(format!("law '{}' needs a config_file: {what}", library.name)),
+        (Some(path), None) => {
+            return Err(format!("law '{}' takes no config_file, but '{}' was given", library.name, path.display()));
+        }
+        (None, None) => None,
+    };
     let mut values = resolve_parameters(&library.name, &library.parameters, given)?;
     for (spec, v) in library.parameters.iter().zip(values.iter_mut()) {
         if spec.name == "penalty" && *v == 0.0 {
             *v = 100.0 * context.modulus / context.face_size;
         }
     }
-    Ok(Arc::new(library.instantiate(&values).map_err(|e| e.to_string())?))
+    let text = config.as_ref().map(|(_, t)| t.as_str()).unwrap_or("");
+    let law = library.instantiate(&values, text).map_err(|e| match &config {
+        Some((path, _)) => format!("{e} (config file '{}')", path.display()),
+        None => e.to_string(),
+    })?;
+    Ok(Arc::new(law))
 }

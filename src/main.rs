@@ -69,6 +69,9 @@ enum PluginCommand {
         /// Parameter values (required ones that have no default must be given).
         #[arg(long = "param", value_name = "NAME=VALUE")]
         params: Vec<String>,
+        /// Configuration file for laws that take one (e.g. a calibration).
+        #[arg(long = "config-file")]
+        config_file: Option<PathBuf>,
         /// Gap scale of the test path (default 1; use the law's length scale, e.g. z0).
         #[arg(long, default_value_t = 1.0)]
         gap_scale: f64,
@@ -80,6 +83,9 @@ enum PluginCommand {
 
 fn describe(l: &stiction_interfaces::plugin::LawLibrary) {
     println!("{} {} ({:?}, {} state variables) [{}]", l.name, l.version, l.kind, l.n_state, l.origin);
+    if let Some(c) = &l.config_description {
+        println!("    config_file: {c}");
+    }
     for p in &l.parameters {
         let default = p.default.map(|d| format!("default {d}")).unwrap_or_else(|| "required".into());
         println!("    {} [{}]: {}; {default}; range [{}, {}]", p.name, p.unit, p.description, p.min, p.max);
@@ -106,7 +112,7 @@ fn list_plugins(dirs: &[PathBuf]) {
     }
 }
 
-fn plugin_check(law: &str, params: &[String], gap_scale: f64, dirs: &[PathBuf]) -> ExitCode {
+fn plugin_check(law: &str, params: &[String], config: Option<PathBuf>, gap_scale: f64, dirs: &[PathBuf]) -> ExitCode {
     let registry = stiction::laws::LawRegistry::new(dirs);
     let mut given = Vec::new();
     for p in params {
@@ -123,7 +129,14 @@ fn plugin_check(law: &str, params: &[String], gap_scale: f64, dirs: &[PathBuf]) 
         return ExitCode::from(2);
     }
     let context = stiction::laws::LawContext { modulus: 1.0, face_size: 1.0 };
-    let instance = match stiction::laws::make_law(&registry, law, std::path::Path::new("."), &given, &context) {
+    let instance = match stiction::laws::make_law(
+        &registry,
+        law,
+        std::path::Path::new("."),
+        &given,
+        config.as_deref(),
+        &context,
+    ) {
         Ok(l) => l,
         Err(e) => {
             eprintln!("error: {e}");
@@ -180,8 +193,8 @@ fn main() -> ExitCode {
             list_plugins(&dirs);
             Ok(())
         }
-        Command::Plugin { command: PluginCommand::Check { law, params, gap_scale, dirs } } => {
-            return plugin_check(&law, &params, gap_scale, &dirs);
+        Command::Plugin { command: PluginCommand::Check { law, params, config_file, gap_scale, dirs } } => {
+            return plugin_check(&law, &params, config_file, gap_scale, &dirs);
         }
     };
     match result {

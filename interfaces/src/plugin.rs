@@ -47,6 +47,8 @@ pub struct LawLibrary {
     pub n_state: usize,
     pub parameters: Vec<ParameterSpec>,
     pub state_names: Vec<String>,
+    /// What the law's configuration text is, if it takes one.
+    pub config_description: Option<String>,
 }
 
 // SAFETY: the descriptor is immutable static data of the library, which this struct keeps loaded;
@@ -135,16 +137,31 @@ impl LawLibrary {
             n_state: d.n_state as usize,
             parameters,
             state_names,
+            config_description: (!d.config_description.is_null())
+                .then(|| unsafe { abi::c_str(d.config_description) }.to_string()),
         })
     }
 
-    /// Creates an instance with parameter values in `self.parameters` order.
-    pub fn instantiate(self: &Arc<Self>, values: &[f64]) -> Result<AbiLaw, PluginError> {
+    /// Creates an instance with parameter values in `self.parameters` order and the law's
+    /// configuration text (empty when none).
+    pub fn instantiate(self: &Arc<Self>, values: &[f64], config: &str) -> Result<AbiLaw, PluginError> {
         let d = unsafe { &*self.descriptor };
         let mut instance: *mut c_void = std::ptr::null_mut();
-        let mut message = [0 as c_char; 512];
+        let mut message = [0 as c_char; 1024];
+        let config = std::ffi::CString::new(config).map_err(|_| PluginError::Create {
+            law: self.name.clone(),
+            path: self.origin.clone(),
+            message: "the configuration text contains a NUL byte".into(),
+        })?;
         let status = unsafe {
-            (d.create)(values.as_ptr(), values.len() as u32, &mut instance, message.as_mut_ptr(), message.len())
+            (d.create)(
+                values.as_ptr(),
+                values.len() as u32,
+                config.as_ptr(),
+                &mut instance,
+                message.as_mut_ptr(),
+                message.len(),
+            )
         };
         if status != STATUS_OK || instance.is_null() {
             let text = unsafe { abi::c_str(message.as_ptr()) }.to_string();
@@ -254,7 +271,7 @@ mod tests {
         fn parameters() -> Vec<Parameter> {
             vec![Parameter::optional(c"k", c"GPa/nm", c"stiffness", 2.0, 0.0, 10.0)]
         }
-        fn create(p: &[f64]) -> Result<Self, String> {
+        fn create(p: &[f64], _config: &str) -> Result<Self, String> {
             if p[0] == 0.0 { Err("k must not be zero".into()) } else { Ok(Self { k: p[0] }) }
         }
         fn evaluate(&self, gap: f64, old: &[f64], new: &mut [f64]) -> Result<Response, String> {
@@ -282,18 +299,18 @@ mod tests {
         assert_eq!(lib.parameters[0].name, "k");
         assert_eq!(lib.parameters[0].default, Some(2.0));
         assert_eq!(lib.state_names, vec!["max_penetration".to_string()]);
-        let law = lib.instantiate(&[3.0]).unwrap();
+        let law = lib.instantiate(&[3.0], "").unwrap();
         let mut state = [0.0];
         let r = law.evaluate(-0.5, &[0.1], &mut state).unwrap();
         assert_eq!((r.value, r.tangent, r.in_contact, state[0]), (1.5, -3.0, true, 0.5));
-        let e = lib.instantiate(&[0.0]).err().unwrap().to_string();
+        let e = lib.instantiate(&[0.0], "").err().unwrap().to_string();
         assert!(e.contains("spring") && e.contains("k must not be zero"), "{e}");
     }
 
     #[test]
     fn panics_and_non_finite_results_become_errors_naming_the_law() {
         let lib = Arc::new(unsafe { LawLibrary::from_static(holder().descriptor()) }.unwrap());
-        let law = lib.instantiate(&[1.0]).unwrap();
+        let law = lib.instantiate(&[1.0], "").unwrap();
         let mut s = [0.0];
         let e = law.evaluate(2.0, &[0.0], &mut s).unwrap_err().0;
         assert!(e.contains("spring") && e.contains("panicked") && e.contains("gap too large"), "{e}");

@@ -181,6 +181,9 @@ pub struct InterfaceSpec {
     /// Law parameters (validated against the law's parameter list).
     #[serde(default)]
     pub parameters: BTreeMap<String, f64>,
+    /// Configuration file for laws that take one (e.g. an asperity calibration), relative to the
+    /// case file.
+    pub config_file: Option<PathBuf>,
     /// Extra Gauss points per face direction (default 0; short-range laws want 2 or more).
     #[serde(default)]
     pub quadrature_order: usize,

@@ -41,7 +41,7 @@ fn the_template_law_builds_loads_passes_conformance_and_runs_in_a_case() {
     assert_eq!(names, ["w", "delta"]);
     // closed form: sigma = -(w/delta)(g/delta) exp(-g/delta)
     let (w, delta): (f64, f64) = (0.5, 0.3);
-    let law = lib.instantiate(&[w, delta]).unwrap();
+    let law = lib.instantiate(&[w, delta], "").unwrap();
     for g in [-0.2f64, 0.0, 0.1, 0.3, 1.0] {
         let r = law.evaluate(g, &[], &mut []).unwrap();
         let exact = -(w / delta) * (g / delta) * (-g / delta).exp();
@@ -77,8 +77,8 @@ fn the_lennard_jones_plugin_library_matches_the_built_in_law_bit_for_bit() {
     let registry = LawRegistry::new(&[]);
     let ctx = LawContext { modulus: 1.0, face_size: 1.0 };
     let params = [("w".to_string(), 3.0), ("z0".to_string(), 0.169)];
-    let dynamic = make_law(&registry, path.to_str().unwrap(), &workspace_root(), &params, &ctx).unwrap();
-    let builtin = make_law(&registry, "lennard-jones", &workspace_root(), &params, &ctx).unwrap();
+    let dynamic = make_law(&registry, path.to_str().unwrap(), &workspace_root(), &params, None, &ctx).unwrap();
+    let builtin = make_law(&registry, "lennard-jones", &workspace_root(), &params, None, &ctx).unwrap();
     for k in 0..200 {
         let g = -0.1 + 0.01 * k as f64;
         let a = dynamic.evaluate(g, &[], &mut []).unwrap();
@@ -91,19 +91,21 @@ fn the_lennard_jones_plugin_library_matches_the_built_in_law_bit_for_bit() {
 fn a_missing_law_says_where_it_looked_and_bad_parameters_name_the_key() {
     let registry = LawRegistry::new(&[PathBuf::from("/nonexistent/plugins")]);
     let ctx = LawContext { modulus: 1.0, face_size: 1.0 };
-    let e = make_law(&registry, "no-such-law", &workspace_root(), &[], &ctx).err().unwrap();
+    let e = make_law(&registry, "no-such-law", &workspace_root(), &[], None, &ctx).err().unwrap();
     assert!(
         e.contains("no-such-law") && e.contains("/nonexistent/plugins") && e.contains("STICTION_PLUGIN_PATH"),
         "{e}"
     );
-    let e = make_law(&registry, "lennard-jones", &workspace_root(), &[("w".into(), 1.0)], &ctx).err().unwrap();
+    let e = make_law(&registry, "lennard-jones", &workspace_root(), &[("w".into(), 1.0)], None, &ctx).err().unwrap();
     assert!(e.contains("z0") && e.contains("needs parameter"), "{e}");
-    let e = make_law(&registry, "lennard-jones", &workspace_root(), &[("w".into(), -1.0), ("z0".into(), 0.1)], &ctx)
-        .err()
-        .unwrap();
+    let e =
+        make_law(&registry, "lennard-jones", &workspace_root(), &[("w".into(), -1.0), ("z0".into(), 0.1)], None, &ctx)
+            .err()
+            .unwrap();
     assert!(e.contains("'w'") && e.contains("outside its range"), "{e}");
-    let e = make_law(&registry, "lennard-jones", &workspace_root(), &[("gamma".into(), 1.0)], &ctx).err().unwrap();
+    let e =
+        make_law(&registry, "lennard-jones", &workspace_root(), &[("gamma".into(), 1.0)], None, &ctx).err().unwrap();
     assert!(e.contains("no parameter 'gamma'"), "{e}");
-    let e = make_law(&registry, "target/nothing/libx.so", &workspace_root(), &[], &ctx).err().unwrap();
+    let e = make_law(&registry, "target/nothing/libx.so", &workspace_root(), &[], None, &ctx).err().unwrap();
     assert!(e.contains("libx.so"), "{e}");
 }

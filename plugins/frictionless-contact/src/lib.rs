@@ -27,7 +27,7 @@ impl Law for FrictionlessContact {
         )]
     }
 
-    fn create(p: &[f64]) -> Result<Self, String> {
+    fn create(p: &[f64], _config: &str) -> Result<Self, String> {
         if !(p[0] > 0.0 && p[0].is_finite()) {
             return Err(format!("penalty must be positive and finite, got {}", p[0]));
         }
@@ -48,13 +48,13 @@ mod tests {
     use super::*;
     #[test]
     fn tangent_matches_finite_differences_away_from_the_kink() {
-        let law = FrictionlessContact::create(&[50.0]).unwrap();
+        let law = FrictionlessContact::create(&[50.0], "").unwrap();
         for g in [-0.3, -0.01, 0.02, 0.5] {
             let h = 1e-7;
             let f = |x: f64| law.evaluate(x, &[], &mut []).unwrap().value;
             let fd = (f(g + h) - f(g - h)) / (2.0 * h);
             assert!((fd - law.evaluate(g, &[], &mut []).unwrap().tangent).abs() < 1e-6);
         }
-        assert!(FrictionlessContact::create(&[0.0]).is_err());
+        assert!(FrictionlessContact::create(&[0.0], "").is_err());
     }
 }

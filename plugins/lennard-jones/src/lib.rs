@@ -45,7 +45,7 @@ impl Law for LennardJones {
         ]
     }
 
-    fn create(p: &[f64]) -> Result<Self, String> {
+    fn create(p: &[f64], _config: &str) -> Result<Self, String> {
         let (w, z0) = (p[0], p[1]);
         if !(w > 0.0 && z0 > 0.0 && w.is_finite() && z0.is_finite()) {
             return Err(format!("w and z0 must be positive, got w = {w}, z0 = {z0}"));
@@ -72,7 +72,7 @@ mod tests {
 
     #[test]
     fn integral_of_attraction_is_the_work_of_adhesion() {
-        let law = LennardJones::create(&[1.0, 0.169]).unwrap();
+        let law = LennardJones::create(&[1.0, 0.169], "").unwrap();
         // integral_z0^inf p dh with p = -sigma, substitution h = z0 / s: integral_0^1 p z0/s^2 ds
         let g = stiction_core::quadrature::gauss_legendre(40);
         let mut total = 0.0;
@@ -86,7 +86,7 @@ mod tests {
 
     #[test]
     fn peak_attraction_and_tangent() {
-        let law = LennardJones::create(&[3.0, 0.169]).unwrap();
+        let law = LennardJones::create(&[3.0, 0.169], "").unwrap();
         let h_peak = 3f64.powf(1.0 / 6.0) * law.z0;
         let r = law.evaluate(h_peak, &[], &mut []).unwrap();
         assert!((-r.value - law.peak_stress()).abs() < 1e-12 * law.peak_stress());

@@ -44,6 +44,7 @@ pub struct AbiResponse {
 pub type CreateFn = unsafe extern "C" fn(
     parameters: *const f64,
     n_parameters: u32,
+    config: *const c_char,
     instance: *mut *mut c_void,
     message: *mut c_char,
     message_len: usize,
@@ -77,6 +78,8 @@ pub struct LawDescriptor {
     pub parameters: *const AbiParameter,
     /// `n_state` names (may be null when the law gives none).
     pub state_names: *const *const c_char,
+    /// What the configuration text passed to `create` is; null when the law takes none.
+    pub config_description: *const c_char,
     pub create: CreateFn,
     pub destroy: DestroyFn,
     pub initialize_state: InitializeStateFn,
@@ -124,6 +127,7 @@ impl DescriptorHolder {
             } else {
                 std::ptr::null()
             },
+            config_description: L::config_description().map_or(std::ptr::null(), |c| c.as_ptr()),
             create: create::<L>,
             destroy: destroy::<L>,
             initialize_state: initialize_state::<L>,
@@ -162,6 +166,7 @@ fn panic_text(payload: Box<dyn std::any::Any + Send>) -> String {
 unsafe extern "C" fn create<L: Law>(
     parameters: *const f64,
     n_parameters: u32,
+    config: *const c_char,
     instance: *mut *mut c_void,
     message: *mut c_char,
     message_len: usize,
@@ -173,7 +178,9 @@ unsafe extern "C" fn create<L: Law>(
         } else {
             unsafe { std::slice::from_raw_parts(parameters, n_parameters as usize) }
         };
-        L::create(p)
+        // SAFETY: null or a NUL-terminated UTF-8 string owned by the host for this call.
+        let text = if config.is_null() { "" } else { unsafe { CStr::from_ptr(config) }.to_str().unwrap_or("") };
+        L::create(p, text)
     }));
     match result {
         Ok(Ok(law)) => {

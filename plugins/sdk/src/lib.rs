@@ -1,7 +1,7 @@
 //! The Stiction interface-law SDK: write a law as safe Rust, export it through the versioned C
 //! ABI with one macro, and the host (the `stiction` program) loads it at run time.
 //!
-//! ```ignore
+//! ```
 //! use stiction_law_sdk::{Law, LawKind, Parameter, Response, export_law};
 //! pub struct Spring { k: f64 }
 //! impl Law for Spring {
@@ -10,7 +10,7 @@
 //!     const KIND: LawKind = LawKind::TractionPerArea;
 //!     const N_STATE: usize = 0;
 //!     fn parameters() -> Vec<Parameter> { vec![Parameter::required(c"k", c"GPa/nm", c"stiffness", 0.0, f64::INFINITY)] }
-//!     fn create(p: &[f64]) -> Result<Self, String> { Ok(Spring { k: p[0] }) }
+//!     fn create(p: &[f64], _config: &str) -> Result<Self, String> { Ok(Spring { k: p[0] }) }
 //!     fn evaluate(&self, gap: f64, _old: &[f64], _new: &mut [f64]) -> Result<Response, String> {
 //!         Ok(Response { value: -self.k * gap.min(0.0), tangent: if gap < 0.0 { -self.k } else { 0.0 }, in_contact: gap < 0.0, area: 0.0 })
 //!     }
@@ -91,9 +91,15 @@ pub trait Law: Sized + Send + Sync {
     /// State variables per point.
     const N_STATE: usize;
     fn parameters() -> Vec<Parameter>;
+    /// What the law's configuration text is (e.g. "calibration file (TOML)"), or `None` when
+    /// the law takes no configuration text.
+    fn config_description() -> Option<&'static CStr> {
+        None
+    }
     /// Creates an instance from parameter values in `parameters()` order (already range-checked
-    /// by the host; check relations between parameters here).
-    fn create(parameters: &[f64]) -> Result<Self, String>;
+    /// by the host; check relations between parameters here) and the configuration text
+    /// (empty when none was given).
+    fn create(parameters: &[f64], config: &str) -> Result<Self, String>;
     /// Initial state of a point.
     fn initialize_state(&self, state: &mut [f64]) {
         state.fill(0.0);

@@ -28,7 +28,7 @@ impl Law for ExponentialAdhesion {
         ]
     }
 
-    fn create(p: &[f64]) -> Result<Self, String> {
+    fn create(p: &[f64], _config: &str) -> Result<Self, String> {
         Ok(Self { w: p[0], delta: p[1] })
     }
 
@@ -51,7 +51,7 @@ mod tests {
 
     #[test]
     fn tangent_is_the_derivative_of_the_traction() {
-        let law = ExponentialAdhesion::create(&[2.0, 0.3]).unwrap();
+        let law = ExponentialAdhesion::create(&[2.0, 0.3], "").unwrap();
         for g in [-0.4, -0.05, 0.1, 0.3, 1.5] {
             let h = 1e-7;
             let f = |x: f64| law.evaluate(x, &[], &mut []).unwrap().value;
