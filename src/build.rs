@@ -408,7 +408,7 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
             (Some(v), _) if v.len() == dpn => [v[0], v[1], if dpn == 3 { v[2] } else { 0.0 }],
             (Some(_), _) => return Err(case.error(format!("{key}.normal"), format!("needs {dpn} components"))),
         };
-        let flat = stiction_interfaces::RigidFlat::new(
+        let flat = stiction_interfaces::RigidFlat::over_surface(
             &mesh,
             kin,
             stiction_interfaces::RigidFlatSpec {

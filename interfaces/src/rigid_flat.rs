@@ -1,15 +1,18 @@
-//! A body surface against a rigid flat plane.
+//! A rigid flat plane against a body: over a surface (traction laws integrated with surface
+//! quadrature) or at discrete points on the surface (force-per-point laws, e.g. asperities).
 //!
 //! The plane has unit normal n pointing from the flat toward the body and sits at
-//! s(t) = s0 + approach(t) along n, where s0 = min over the surface of x . n plus
-//! `initial_gap` (so approach 0 is first touch of the undeformed surface when initial_gap = 0).
-//! Gap at a surface point: g = (x + u) . n - s(t).
-//! A traction law sigma(g) (positive pushes apart) acts on the body along +n:
-//! f_a = integral N_a sigma(g) n dA; as internal force f_int,a = -f_a, with tangent
-//! K_ab = -integral N_a N_b (d sigma / d g) n x n dA.
+//! s(t) = s0 + approach(t) along n. A point with reference position x on the body and offset h
+//! toward the flat (an asperity's height; 0 for surface points) has the gap
+//! g = x . n - h + u(x) . n - s(t), with u interpolated from its face's nodes. s0 is the lowest
+//! x . n - h over the points minus `initial_gap`, so approach 0 is first touch when
+//! initial_gap = 0. The law's value (positive pushes apart) acts on the body along +n with
+//! weight w (the quadrature area for traction laws, 1 for force laws):
+//! f_a = N_a value w n, as internal force -f_a, tangent K_ab = -N_a N_b (d value/d g) w n x n.
 //! Reported: `approach`, `force` (total normal force of the flat on the body, positive
-//! compressive), `contact_area` (area of points in contact), `n_contact`.
+//! compressive), `contact_area`, `n_contact`.
 
+use crate::surface_locator::SurfaceLocator;
 use std::sync::Arc;
 use stiction_core::CoreError;
 use stiction_core::amplitude::Amplitude;
@@ -20,28 +23,36 @@ use stiction_core::model::Contribution;
 use stiction_core::output::vtk::Field;
 use stiction_elements::FaceIntegrator;
 
-/// How to build a rigid flat.
+/// Where the flat is and how it moves.
 pub struct RigidFlatSpec {
     pub name: String,
-    /// Surface group (dimension model_dim - 1).
+    /// Surface group of the body (dimension model_dim - 1).
     pub surface: String,
-    /// Unit normal from the flat toward the body (3 components; axisymmetric uses x = r, y = z).
+    /// Unit normal from the flat toward the body (axisymmetric: x = r, y = z).
     pub normal: [f64; 3],
-    /// Approach history: approach(t) = scale * amplitude(t).
+    /// approach(t) = scale * amplitude(t).
     pub approach_scale: f64,
     pub approach_amplitude: Arc<Amplitude>,
     pub initial_gap: f64,
-    /// Extra Gauss points per face direction (short-range laws want more).
+    /// Extra Gauss points per face direction (surface interfaces).
     pub extra_order: usize,
 }
 
-/// One integration point of the interface surface.
+/// A discrete point: in-plane coordinates (along two directions orthogonal to the normal,
+/// measured from the surface's lowest point) and its height toward the flat.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DiscretePoint {
+    pub in_plane: [f64; 2],
+    pub height: f64,
+}
+
 #[derive(Debug, Clone)]
-struct SurfacePoint {
+struct InterfacePoint {
     nodes: Vec<usize>,
     shape: Vec<f64>,
-    area: f64,
-    /// x0 . n
+    /// Area (traction laws) or 1 (force laws).
+    weight: f64,
+    /// x . n - h
     level: f64,
     position: [f64; 3],
 }
@@ -54,20 +65,48 @@ pub struct RigidFlat {
     base_level: f64,
     approach_scale: f64,
     approach_amplitude: Arc<Amplitude>,
-    points: Vec<SurfacePoint>,
+    points: Vec<InterfacePoint>,
     state_committed: Vec<f64>,
     state_trial: Vec<f64>,
-    /// Per point: gap, value, in contact (trial).
+    /// Per point (trial): gap, value, area, in contact.
     gap: Vec<f64>,
     value: Vec<f64>,
+    area: Vec<f64>,
     contact: Vec<bool>,
     committed_summary: [f64; 4],
     trial_summary: [f64; 4],
-    committed_fields: (Vec<f64>, Vec<f64>, Vec<f64>),
+    committed_fields: Vec<Vec<f64>>,
+}
+
+fn unit_normal(spec: &RigidFlatSpec, kinematics: Kinematics) -> Result<[f64; 3], CoreError> {
+    let len = spec.normal.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !(len > 0.0) {
+        return Err(CoreError::Invalid(format!("interface '{}': the normal must be non-zero", spec.name)));
+    }
+    let normal = spec.normal.map(|x| x / len);
+    if kinematics == Kinematics::Axisymmetric && (normal[0].abs() > 1e-12 || normal[2].abs() > 1e-12) {
+        return Err(CoreError::Invalid(format!(
+            "interface '{}': in an axisymmetric model the flat must be normal to the axis (normal [0, 1] or [0, -1])",
+            spec.name
+        )));
+    }
+    Ok(normal)
+}
+
+/// Two unit vectors spanning the plane normal to n.
+pub fn plane_basis(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let a = if n[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let d = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+    let e1 = [a[0] - d * n[0], a[1] - d * n[1], a[2] - d * n[2]];
+    let l = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
+    let e1 = [e1[0] / l, e1[1] / l, e1[2] / l];
+    let e2 = [n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]];
+    (e1, e2)
 }
 
 impl RigidFlat {
-    pub fn new(
+    /// A flat against a surface group, with a traction law integrated over the faces.
+    pub fn over_surface(
         mesh: &Mesh,
         kinematics: Kinematics,
         spec: RigidFlatSpec,
@@ -75,25 +114,12 @@ impl RigidFlat {
     ) -> Result<Self, CoreError> {
         if law.kind() != LawKind::TractionPerArea {
             return Err(CoreError::Invalid(format!(
-                "interface '{}': law '{}' gives forces per point; a rigid flat over a surface needs a traction law",
+                "interface '{}': law '{}' gives forces per point; a flat over a surface needs a traction law (or give discrete points)",
                 spec.name,
                 law.name()
             )));
         }
-        let nn = (spec.normal.iter().map(|x| x * x).sum::<f64>()).sqrt();
-        if !(nn > 0.0) {
-            return Err(CoreError::Invalid(format!("interface '{}': the normal must be non-zero", spec.name)));
-        }
-        let mut normal = spec.normal.map(|x| x / nn);
-        if kinematics == Kinematics::Axisymmetric {
-            if normal[0].abs() > 1e-12 || normal[2].abs() > 1e-12 {
-                return Err(CoreError::Invalid(format!(
-                    "interface '{}': in an axisymmetric model the flat must be normal to the axis (normal [0, 1] or [0, -1])",
-                    spec.name
-                )));
-            }
-            normal = [0.0, normal[1].signum(), 0.0];
-        }
+        let normal = unit_normal(&spec, kinematics)?;
         let group = mesh.group(&spec.surface)?;
         let model_dim = if kinematics == Kinematics::Solid3D { 3 } else { 2 };
         if group.dim + 1 != model_dim {
@@ -106,17 +132,21 @@ impl RigidFlat {
             )));
         }
         let mut points = Vec::new();
+        let mut lowest_node = f64::INFINITY;
         for block in mesh.blocks_of(group) {
             let integrator =
                 FaceIntegrator::new(block.cell_type, kinematics, spec.extra_order).map_err(CoreError::Invalid)?;
             for face in block.cells() {
                 let coords: Vec<[f64; 3]> = face.iter().map(|&n| mesh.nodes[n]).collect();
+                for c in &coords {
+                    lowest_node = lowest_node.min(c[0] * normal[0] + c[1] * normal[1] + c[2] * normal[2]);
+                }
                 for p in integrator.points(&coords, 1.0) {
                     let level = (0..3).map(|k| p.position[k] * normal[k]).sum();
-                    points.push(SurfacePoint {
+                    points.push(InterfacePoint {
                         nodes: face.to_vec(),
                         shape: p.shape,
-                        area: p.area,
+                        weight: p.area,
                         level,
                         position: p.position,
                     });
@@ -126,14 +156,94 @@ impl RigidFlat {
         if points.is_empty() {
             return Err(CoreError::EmptyGroup { name: spec.surface.clone(), what: "faces".into() });
         }
-        let min_level = points.iter().map(|p| p.level).fold(f64::INFINITY, f64::min);
-        // nodes can sit lower than integration points (the pole): use nodes too
-        let node_min = points
+        // nodes (the pole) can sit lower than any integration point
+        Self::assemble_new(spec, kinematics, law, normal, points, Some(lowest_node))
+    }
+
+    /// A flat against discrete points placed on a surface group (3D), with a force law.
+    /// `source` names where the points came from, for messages.
+    pub fn at_points(
+        mesh: &Mesh,
+        kinematics: Kinematics,
+        spec: RigidFlatSpec,
+        law: Arc<dyn InterfaceLaw>,
+        discrete: &[DiscretePoint],
+        source: &str,
+    ) -> Result<Self, CoreError> {
+        if law.kind() != LawKind::ForcePerPoint {
+            return Err(CoreError::Invalid(format!(
+                "interface '{}': law '{}' gives tractions; discrete points need a force-per-point law",
+                spec.name,
+                law.name()
+            )));
+        }
+        if kinematics != Kinematics::Solid3D {
+            return Err(CoreError::Invalid(format!("interface '{}': discrete points need a 3d model", spec.name)));
+        }
+        if discrete.is_empty() {
+            return Err(CoreError::Invalid(format!("interface '{}': no points ({source})", spec.name)));
+        }
+        let normal = unit_normal(&spec, kinematics)?;
+        let group = mesh.group(&spec.surface)?;
+        let locator = SurfaceLocator::new(mesh, group, normal)?;
+        // In-plane origin: the lowest node of the surface (the pole).
+        let nodes = mesh.group_nodes(group);
+        let pole = nodes
             .iter()
-            .flat_map(|p| p.nodes.iter())
-            .map(|&n| (0..3).map(|k| mesh.nodes[n][k] * normal[k]).sum::<f64>())
-            .fold(f64::INFINITY, f64::min);
-        let base_level = min_level.min(node_min) - spec.initial_gap;
+            .map(|&n| mesh.nodes[n])
+            .min_by(|a, b| {
+                let (la, lb) =
+                    ((0..3).map(|k| a[k] * normal[k]).sum::<f64>(), (0..3).map(|k| b[k] * normal[k]).sum::<f64>());
+                la.total_cmp(&lb)
+            })
+            .expect("a surface group has nodes");
+        let (e1, e2) = plane_basis(normal);
+        let pole_level: f64 = (0..3).map(|k| pole[k] * normal[k]).sum();
+        let mut points = Vec::with_capacity(discrete.len());
+        for (i, d) in discrete.iter().enumerate() {
+            // start the ray well on the flat's side of the body
+            let start: [f64; 3] = std::array::from_fn(|k| {
+                pole[k] + d.in_plane[0] * e1[k] + d.in_plane[1] * e2[k] - 10.0 * normal[k] * (1.0 + pole_level.abs())
+            });
+            let hit = locator.locate(start).ok_or_else(|| {
+                CoreError::Invalid(format!(
+                    "interface '{}': point {} of {source} at in-plane ({:.4}, {:.4}) is outside surface '{}'",
+                    spec.name,
+                    i + 1,
+                    d.in_plane[0],
+                    d.in_plane[1],
+                    spec.surface
+                ))
+            })?;
+            if !(d.height >= 0.0 && d.height.is_finite()) {
+                return Err(CoreError::Invalid(format!(
+                    "interface '{}': point {} of {source} has height {}",
+                    spec.name,
+                    i + 1,
+                    d.height
+                )));
+            }
+            let level = (0..3).map(|k| hit.position[k] * normal[k]).sum::<f64>() - d.height;
+            points.push(InterfacePoint {
+                nodes: hit.nodes,
+                shape: hit.shape,
+                weight: 1.0,
+                level,
+                position: hit.position,
+            });
+        }
+        Self::assemble_new(spec, kinematics, law, normal, points, None)
+    }
+
+    fn assemble_new(
+        spec: RigidFlatSpec,
+        kinematics: Kinematics,
+        law: Arc<dyn InterfaceLaw>,
+        normal: [f64; 3],
+        points: Vec<InterfacePoint>,
+        lowest_extra: Option<f64>,
+    ) -> Result<Self, CoreError> {
+        let lowest = points.iter().map(|p| p.level).fold(lowest_extra.unwrap_or(f64::INFINITY), f64::min);
         let ns = law.n_state();
         let mut state = vec![0.0; points.len() * ns];
         if ns > 0 {
@@ -142,12 +252,13 @@ impl RigidFlat {
             }
         }
         let n = points.len();
+        let n_fields = 4 + ns;
         Ok(Self {
             name: spec.name,
             law,
             dpn: kinematics.dofs_per_node(),
             normal,
-            base_level,
+            base_level: lowest - spec.initial_gap,
             approach_scale: spec.approach_scale,
             approach_amplitude: spec.approach_amplitude,
             points,
@@ -155,14 +266,15 @@ impl RigidFlat {
             state_committed: state,
             gap: vec![0.0; n],
             value: vec![0.0; n],
+            area: vec![0.0; n],
             contact: vec![false; n],
             committed_summary: [0.0; 4],
             trial_summary: [0.0; 4],
-            committed_fields: (vec![0.0; n], vec![0.0; n], vec![0.0; n]),
+            committed_fields: vec![vec![0.0; n]; n_fields],
         })
     }
 
-    /// Number of integration points on the surface.
+    /// Number of interface points (quadrature points or discrete points).
     pub fn n_points(&self) -> usize {
         self.points.len()
     }
@@ -172,9 +284,9 @@ impl RigidFlat {
         self.approach_scale * self.approach_amplitude.value(t)
     }
 
-    /// Typical face size: sqrt of the mean area per point (3D) or per point / (2 pi r) (axisym).
-    pub fn mean_point_area(&self) -> f64 {
-        self.points.iter().map(|p| p.area).sum::<f64>() / self.points.len() as f64
+    /// Reference positions of the points on the body.
+    pub fn positions(&self) -> Vec<[f64; 3]> {
+        self.points.iter().map(|p| p.position).collect()
     }
 }
 
@@ -192,6 +304,7 @@ impl Contribution for RigidFlat {
     ) -> Result<(), CoreError> {
         let dpn = self.dpn;
         let ns = self.law.n_state();
+        let traction_law = self.law.kind() == LawKind::TractionPerArea;
         let level = self.base_level + self.approach(time);
         let n = self.normal;
         let (mut total, mut area, mut count) = (0.0, 0.0, 0.0);
@@ -206,39 +319,35 @@ impl Contribution for RigidFlat {
             let r = self
                 .law
                 .evaluate(g, &self.state_committed[i * ns..(i + 1) * ns], &mut self.state_trial[i * ns..(i + 1) * ns])
-                .map_err(|e| {
-                    CoreError::Invalid(format!(
-                        "interface '{}', law '{}', point {i}: {}",
-                        self.name,
-                        self.law.name(),
-                        e.0
-                    ))
-                })?;
+                .map_err(|e| CoreError::Invalid(format!("interface '{}', point {}: {}", self.name, i + 1, e.0)))?;
             if !r.value.is_finite() || !r.tangent.is_finite() {
                 return Err(CoreError::NonFinite(format!(
-                    "traction of law '{}' at point {i} of interface '{}' (gap {g:e})",
+                    "value of law '{}' at point {} of interface '{}' (gap {g:e})",
                     self.law.name(),
+                    i + 1,
                     self.name
                 )));
             }
+            let point_area = if traction_law { p.weight } else { r.area };
             self.gap[i] = g;
             self.value[i] = r.value;
+            self.area[i] = if r.in_contact { point_area } else { 0.0 };
             self.contact[i] = r.in_contact;
-            total += r.value * p.area;
+            total += r.value * p.weight;
             if r.in_contact {
-                area += p.area;
+                area += point_area;
                 count += 1.0;
             }
             for (a, &node) in p.nodes.iter().enumerate() {
                 for k in 0..dpn {
-                    force[node * dpn + k] -= p.shape[a] * r.value * n[k] * p.area;
+                    force[node * dpn + k] -= p.shape[a] * r.value * n[k] * p.weight;
                 }
             }
             if let Some(add) = tangent.as_deref_mut() {
                 if r.tangent != 0.0 {
                     for (a, &na) in p.nodes.iter().enumerate() {
                         for (b, &nb) in p.nodes.iter().enumerate() {
-                            let s = -p.shape[a] * p.shape[b] * r.tangent * p.area;
+                            let s = -p.shape[a] * p.shape[b] * r.tangent * p.weight;
                             for i in 0..dpn {
                                 for j in 0..dpn {
                                     if n[i] != 0.0 && n[j] != 0.0 {
@@ -262,8 +371,18 @@ impl Contribution for RigidFlat {
     fn commit(&mut self) {
         self.state_committed.copy_from_slice(&self.state_trial);
         self.committed_summary = self.trial_summary;
-        self.committed_fields =
-            (self.gap.clone(), self.value.clone(), self.contact.iter().map(|&c| c as u8 as f64).collect());
+        let ns = self.law.n_state();
+        self.committed_fields[0].copy_from_slice(&self.gap);
+        self.committed_fields[1].copy_from_slice(&self.value);
+        self.committed_fields[2].copy_from_slice(&self.area);
+        for (f, &c) in self.committed_fields[3].iter_mut().zip(&self.contact) {
+            *f = c as u8 as f64;
+        }
+        for k in 0..ns {
+            for (i, f) in self.committed_fields[4 + k].iter_mut().enumerate() {
+                *f = self.state_committed[i * ns + k];
+            }
+        }
     }
 
     fn rollback(&mut self) {
@@ -281,15 +400,16 @@ impl Contribution for RigidFlat {
     }
 
     fn point_output(&self) -> Option<(Vec<[f64; 3]>, Vec<Field>)> {
-        let positions = self.points.iter().map(|p| p.position).collect();
-        let (g, v, c) = &self.committed_fields;
-        Some((
-            positions,
-            vec![
-                Field::new("gap", 1, g.clone()),
-                Field::new("traction", 1, v.clone()),
-                Field::new("in_contact", 1, c.clone()),
-            ],
-        ))
+        let value_name = if self.law.kind() == LawKind::TractionPerArea { "traction" } else { "force" };
+        let mut fields = vec![
+            Field::new("gap", 1, self.committed_fields[0].clone()),
+            Field::new(value_name, 1, self.committed_fields[1].clone()),
+            Field::new("area", 1, self.committed_fields[2].clone()),
+            Field::new("in_contact", 1, self.committed_fields[3].clone()),
+        ];
+        for (k, name) in self.law.state_names().into_iter().enumerate() {
+            fields.push(Field::new(name, 1, self.committed_fields[4 + k].clone()));
+        }
+        Some((self.positions(), fields))
     }
 }
