@@ -10,5 +10,6 @@ if ! command -v gmsh >/dev/null 2>&1; then
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq gmsh >/dev/null
 fi
-cargo run --release --bin stiction -- run cases/ru-sphere/ru-hemisphere-quick.toml "$@"
-echo "results: out/ru-hemisphere-quick/ (history.csv, summary.json, ru-hemisphere-quick.pvd for ParaView)"
+cargo build --release --workspace
+./target/release/stiction run cases/ru-rough-sphere/rough-w6-quick.toml "$@"
+echo "results: out/rough-w6-quick/ (history.csv, events.csv, summary.json, rough-w6-quick.pvd and rough-w6-quick_asperities.pvd for ParaView)"

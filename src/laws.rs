@@ -30,6 +30,7 @@ fn builtin_holders() -> &'static [DescriptorHolder] {
         vec![
             DescriptorHolder::new::<stiction_law_frictionless_contact::FrictionlessContact>(),
             DescriptorHolder::new::<stiction_law_lennard_jones::LennardJones>(),
+            DescriptorHolder::new::<stiction_law_ru_asperity::RuAsperity>(),
         ]
     })
 }

@@ -52,6 +52,38 @@ enum Command {
         #[arg(long = "plugin-path", value_name = "DIR")]
         dirs: Vec<PathBuf>,
     },
+    /// Fit an asperity calibration (loading and unloading polynomials) from a table of
+    /// distance, force, area, branch and maximum distance (e.g. an MD run's output), report the
+    /// fit quality and write the calibration TOML.
+    Calibrate {
+        /// CSV table: header distance,force,area,branch,max_distance; '# key: value' comment lines
+        /// may give work_of_adhesion, description, provenance.
+        table: PathBuf,
+        /// Output calibration file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Order of the loading polynomials (default 4).
+        #[arg(long, default_value_t = 4)]
+        loading_order: usize,
+        /// Order of the unloading polynomials (default 5).
+        #[arg(long, default_value_t = 5)]
+        unloading_order: usize,
+        /// Work of adhesion (J/m^2) if the table does not state it.
+        #[arg(long)]
+        work_of_adhesion: Option<f64>,
+    },
+    /// Write the documented SURROGATE nano-asperity table (not MD) for a work of adhesion.
+    SurrogateTable {
+        /// Work of adhesion in J/m^2.
+        #[arg(long)]
+        work_of_adhesion: f64,
+        /// Output CSV.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Samples per branch (default 60).
+        #[arg(long, default_value_t = 60)]
+        samples: usize,
+    },
     /// Plugin tools.
     Plugin {
         #[command(subcommand)]
@@ -153,6 +185,61 @@ fn plugin_check(law: &str, params: &[String], config: Option<PathBuf>, gap_scale
     if failed == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) }
 }
 
+fn calibrate(table: &std::path::Path, output: &std::path::Path, lo: usize, uo: usize, w: Option<f64>) -> ExitCode {
+    use stiction_law_ru_asperity::fit;
+    let text = match std::fs::read_to_string(table) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: cannot read '{}': {e}", table.display());
+            return ExitCode::from(2);
+        }
+    };
+    let mut parsed = match fit::parse_table(&text) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: '{}': {e}", table.display());
+            return ExitCode::from(2);
+        }
+    };
+    if w.is_some() {
+        parsed.work_of_adhesion = w;
+    }
+    let calibration = match fit::fit(&parsed, lo, uo) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: '{}': {e}", table.display());
+            return ExitCode::from(2);
+        }
+    };
+    let q = calibration.fit.clone().unwrap_or_default();
+    println!(
+        "loading (order {lo}, d in [{:.3}, {:.3}] nm): force rms {:.4} nN, max {:.4} nN; area rms {:.4} nm^2",
+        calibration.loading.d_start,
+        calibration.loading.d_end,
+        q.loading_force_rms,
+        q.loading_force_max,
+        q.loading_area_rms
+    );
+    for (i, u) in calibration.unloading.iter().enumerate() {
+        println!(
+            "unloading from d_max = {:.3} nm (order {uo}, separation at {:.3} nm): force rms {:.4} nN, max {:.4} nN; area rms {:.4} nm^2",
+            u.d_max, u.d_end, q.unloading_force_rms[i], q.unloading_force_max[i], q.unloading_area_rms[i]
+        );
+    }
+    let header = format!(
+        "Asperity calibration written by `stiction calibrate {}`.\n{}\nProvenance: {}",
+        table.display(),
+        calibration.description,
+        calibration.provenance
+    );
+    if let Err(e) = std::fs::write(output, calibration.to_toml(&header)) {
+        eprintln!("error: cannot write '{}': {e}", output.display());
+        return ExitCode::from(1);
+    }
+    println!("wrote {}", output.display());
+    ExitCode::SUCCESS
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -189,6 +276,25 @@ fn main() -> ExitCode {
             );
             Ok(())
         })(),
+        Command::Calibrate { table, output, loading_order, unloading_order, work_of_adhesion } => {
+            return calibrate(&table, &output, loading_order, unloading_order, work_of_adhesion);
+        }
+        Command::SurrogateTable { work_of_adhesion, output, samples } => {
+            if !(work_of_adhesion > 0.0) || samples < 10 {
+                eprintln!("error: --work-of-adhesion must be positive and --samples at least 10");
+                return ExitCode::from(2);
+            }
+            let text = stiction_law_ru_asperity::surrogate::table(work_of_adhesion, samples);
+            if let Err(e) = std::fs::write(&output, text) {
+                eprintln!("error: cannot write '{}': {e}", output.display());
+                return ExitCode::from(1);
+            }
+            println!(
+                "wrote the SURROGATE (not MD) asperity table for w = {work_of_adhesion} J/m^2 to {}",
+                output.display()
+            );
+            Ok(())
+        }
         Command::Plugins { dirs } => {
             list_plugins(&dirs);
             Ok(())

@@ -45,6 +45,35 @@ pub struct RunSummary {
     pub solve_seconds: f64,
     pub plastic_dissipation: f64,
     pub output_directory: PathBuf,
+    /// Per interface: the load cycle's key numbers.
+    pub interfaces: Vec<InterfaceSummary>,
+}
+
+/// Key numbers of one interface over the run (forces positive compressive).
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct InterfaceSummary {
+    pub name: String,
+    pub max_force: f64,
+    pub approach_at_max_force: f64,
+    pub n_contact_at_max_force: f64,
+    pub contact_area_at_max_force: f64,
+    /// Largest compression (-gap) of any interface point at the maximum force: for asperities,
+    /// the deformation of the most loaded asperity.
+    pub max_point_compression_at_max_force: f64,
+    /// max_point_compression_at_max_force / approach_at_max_force: the share of the approach
+    /// taken by the most compressed asperity (the rest is the continuum's deformation).
+    pub point_share_of_approach_at_max_force: f64,
+    /// Most tensile force (negative; 0 if never adhesive) and where it occurred.
+    pub pull_off_force: f64,
+    pub approach_at_pull_off: f64,
+    pub contact_area_at_pull_off: f64,
+    pub max_contact_area: f64,
+    /// Work done by the flat on the body over the run, integral of force d(approach)
+    /// (trapezoidal): over a closed load-unload cycle, the energy dissipated (plus any elastic
+    /// energy locked in by plasticity).
+    pub work_of_flat: f64,
+    /// Increments where points came into or out of contact (see events.csv).
+    pub contact_events: usize,
 }
 
 /// Output directory of a case: `--out`, else `output.directory`, else `out/<name>`.
@@ -80,7 +109,7 @@ fn settings(case: &LoadedCase) -> Result<NewtonSettings> {
 /// The model keeps the final converged state for inspection.
 pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions) -> Result<RunSummary> {
     let wall = Instant::now();
-    let BuiltModel { model, reaction_groups, .. } = built;
+    let BuiltModel { model, reaction_groups, layouts, .. } = &mut *built;
     let reaction_groups = &*reaction_groups;
     let newton = settings(case)?;
     if case.case.steps.is_empty() {
@@ -105,6 +134,11 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
             easy_iterations: 5,
         };
         inc.validate().map_err(|e| case.error(format!("steps[{i}]"), e.to_string()))?;
+        if let Some(name) = &s.until_separated {
+            if !model.contributions.iter().any(|c| c.name() == name) {
+                return Err(case.error(format!("steps[{i}].until_separated"), format!("no interface named '{name}'")));
+            }
+        }
         incrementations.push(inc);
         previous_end = s.end_time;
     }
@@ -134,6 +168,11 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         model.contributions.iter().flat_map(|c| c.history().into_iter().map(|(n, _)| n)).collect();
     columns.extend(contribution_columns);
     let mut history = HistoryWriter::create(&out.join("history.csv"), columns)?;
+    for (name, points) in layouts.iter() {
+        let path = out.join(format!("{name}_points.csv"));
+        crate::build::write_points_csv(&path, points)
+            .map_err(|source| stiction_core::CoreError::Write { path, source })?;
+    }
     let mut pvd = PvdSeries::new(out.join(format!("{}.pvd", case.name)));
     let mut point_series: Vec<PvdSeries> = model
         .contributions
@@ -162,7 +201,38 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         solve_seconds: 0.0,
         plastic_dissipation: 0.0,
         output_directory: out.clone(),
+        interfaces: model
+            .contributions
+            .iter()
+            .map(|c| InterfaceSummary { name: c.name().to_string(), ..Default::default() })
+            .collect(),
     };
+    let mut events = HistoryWriter::create(
+        &out.join("events.csv"),
+        [
+            "time",
+            "approach",
+            "interface",
+            "event",
+            "n_contact_before",
+            "n_contact_after",
+            "force_before",
+            "force_after",
+            "cuts_before",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect(),
+    )?;
+    // name -> (approach, force, contact_area, n_contact) of the last committed increment
+    let observe = |c: &dyn stiction_core::model::Contribution| -> [f64; 4] {
+        let h = c.history();
+        let get = |k: &str| h.iter().find(|(n, _)| n == k).map(|(_, v)| *v).unwrap_or(0.0);
+        [get("approach"), get("force"), get("contact_area"), get("n_contact")]
+    };
+    let mut observed: Vec<[f64; 4]> = model.contributions.iter().map(|c| observe(c.as_ref())).collect();
+    let mut had_contact = vec![false; model.contributions.len()];
+    let mut cuts_since_commit = 0usize;
     let bar = if options.progress {
         let b = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::stderr());
         b.set_style(
@@ -269,6 +339,61 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                     summary.factorization_seconds += report.factorization_seconds;
                     summary.solve_seconds += report.solve_seconds;
                     record(model, &mut history, si + 1, summary.increments, report.iterations)?;
+                    let mut separated = false;
+                    for (k, c) in model.contributions.iter().enumerate() {
+                        let now = observe(c.as_ref());
+                        let before = observed[k];
+                        let s = &mut summary.interfaces[k];
+                        // work of the flat: trapezoid in approach
+                        s.work_of_flat += 0.5 * (now[1] + before[1]) * (now[0] - before[0]);
+                        if now[1] > s.max_force {
+                            s.max_force = now[1];
+                            s.approach_at_max_force = now[0];
+                            s.n_contact_at_max_force = now[3];
+                            s.contact_area_at_max_force = now[2];
+                            if let Some((_, fields)) = c.point_output() {
+                                let compression = fields[0].values.iter().fold(0.0f64, |m, g| m.max(-g));
+                                s.max_point_compression_at_max_force = compression;
+                                s.point_share_of_approach_at_max_force =
+                                    if now[0] > 0.0 { compression / now[0] } else { 0.0 };
+                            }
+                        }
+                        if now[1] < s.pull_off_force {
+                            s.pull_off_force = now[1];
+                            s.approach_at_pull_off = now[0];
+                            s.contact_area_at_pull_off = now[2];
+                        }
+                        s.max_contact_area = s.max_contact_area.max(now[2]);
+                        if now[3] != before[3] || cuts_since_commit > 0 {
+                            let kind = if now[3] < before[3] {
+                                "contact_lost"
+                            } else if now[3] > before[3] {
+                                "contact_gained"
+                            } else {
+                                "increment_cut"
+                            };
+                            if now[3] != before[3] {
+                                s.contact_events += 1;
+                            }
+                            events.append_fields(&[
+                                format!("{:.10e}", model.time),
+                                format!("{:.10e}", now[0]),
+                                c.name().to_string(),
+                                kind.to_string(),
+                                format!("{}", before[3]),
+                                format!("{}", now[3]),
+                                format!("{:.10e}", before[1]),
+                                format!("{:.10e}", now[1]),
+                                format!("{cuts_since_commit}"),
+                            ])?;
+                        }
+                        had_contact[k] |= now[3] > 0.0;
+                        if step.until_separated.as_deref() == Some(c.name()) && had_contact[k] && now[3] == 0.0 {
+                            separated = true;
+                        }
+                        observed[k] = now;
+                    }
+                    cuts_since_commit = 0;
                     since_output += 1;
                     let at_end = t >= step.end_time - 1e-12 * t_end;
                     if write_vtk && ((step.output_every > 0 && since_output >= step.output_every) || at_end) {
@@ -285,11 +410,20 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                     if report.iterations <= inc.easy_iterations {
                         dt = (dt * inc.growth_factor).min(inc.maximum);
                     }
+                    if separated {
+                        // every point has left the flat: this step (and its schedule) ends here
+                        if vtk_needed_at_step_end(write_vtk, at_end, since_output) {
+                            vtk_frame(model, &mut pvd, &mut point_series, frame)?;
+                            frame += 1;
+                        }
+                        break;
+                    }
                 }
                 Err(e) => {
                     model.rollback();
                     last_increment = None;
                     summary.cut_increments += 1;
+                    cuts_since_commit += 1;
                     dt *= inc.cut_factor;
                     bar.set_message(format!("{step_name}: cut to dt = {dt:.2e} at t = {t:.4} ({e})"));
                     if dt < inc.minimum {
@@ -322,4 +456,9 @@ fn write_summary(out: &Path, summary: &RunSummary) -> Result<()> {
 /// The committed value of global dof `g` (the model keeps it for roll-back).
 fn committed_free(model: &stiction_core::model::Model, g: usize) -> f64 {
     model.committed_displacement()[g]
+}
+
+/// A frame is written when a step ends early unless the last increment already wrote one.
+fn vtk_needed_at_step_end(write_vtk: bool, at_end: bool, since_output: usize) -> bool {
+    write_vtk && !at_end && since_output > 0
 }

@@ -187,6 +187,36 @@ pub struct InterfaceSpec {
     /// Extra Gauss points per face direction (default 0; short-range laws want 2 or more).
     #[serde(default)]
     pub quadrature_order: usize,
+    /// Discrete points (e.g. asperities) instead of the whole surface; needs a force law.
+    pub points: Option<PointsSpec>,
+}
+
+/// Discrete points on the interface surface: generated, or read from a file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointsSpec {
+    /// CSV with header `x,y,height`: in-plane coordinates from the surface's lowest point along
+    /// two directions normal to the flat, and the height toward the flat. Relative to the case.
+    pub file: Option<PathBuf>,
+    /// Points per unit area (generator).
+    pub density: Option<f64>,
+    /// Radius of the region around the lowest point, projected on the flat (generator).
+    pub region_radius: Option<f64>,
+    /// Minimum distance between points (generator, default 0).
+    #[serde(default)]
+    pub min_spacing: f64,
+    /// Height of the points toward the flat (generator; e.g. the asperity height).
+    pub height: Option<f64>,
+    /// Standard deviation of heights (generator, default 0: identical heights).
+    #[serde(default)]
+    pub height_std: f64,
+    /// Random seed (generator, default 1).
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+}
+
+fn default_seed() -> u64 {
+    1
 }
 
 /// A step: pseudo-time runs from the end of the previous step to `end_time`.
@@ -204,6 +234,9 @@ pub struct StepSpec {
     /// Write VTK every this many converged increments (default 1; 0 = only at the step end).
     #[serde(default = "one_usize")]
     pub output_every: usize,
+    /// End the step (and the run, if it is the last) once this interface has had contact and
+    /// has none left, e.g. when every asperity has pulled off.
+    pub until_separated: Option<String>,
 }
 
 fn one_usize() -> usize {

@@ -27,6 +27,15 @@ impl HistoryWriter {
         &self.columns
     }
 
+    /// Appends one row of text fields (same length as the header) and flushes it to disk.
+    pub fn append_fields(&mut self, row: &[String]) -> Result<()> {
+        assert_eq!(row.len(), self.columns.len(), "row does not match its header");
+        let err = |source| CoreError::Write { path: self.path.clone(), source };
+        writeln!(self.file, "{}", row.join(",")).map_err(err)?;
+        self.file.flush().map_err(err)?;
+        self.file.get_ref().sync_data().map_err(err)
+    }
+
     /// Appends one row (same length as the header) and flushes it to disk.
     pub fn append(&mut self, row: &[f64]) -> Result<()> {
         assert_eq!(row.len(), self.columns.len(), "history row does not match its header");

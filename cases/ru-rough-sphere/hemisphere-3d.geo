@@ -1,0 +1,19 @@
+// Hemisphere of radius R (3D), pole at the origin touching the flat z = 0, base at z = R.
+// Size h_contact within r_fine of the pole, growing by `growth` per unit distance beyond, up to
+// h_far. Physical groups: body (volume), surface (the spherical surface), base (z = R).
+SetFactory("OpenCASCADE");
+DefineConstant[ R = 1000.0, h_contact = 12.0, r_fine = 60.0, growth = 0.3, h_far = 150.0 ];
+Sphere(1) = {0, 0, R, R, -Pi/2, 0, 2*Pi};
+e = 1e-6 * R;
+Physical Volume("body") = {1};
+Physical Surface("base") = Surface In BoundingBox{-R - e, -R - e, R - e, R + e, R + e, R + e};
+all() = Surface{:};
+base() = Surface In BoundingBox{-R - e, -R - e, R - e, R + e, R + e, R + e};
+Physical Surface("surface") = {all()};
+Physical Surface("surface") -= {base()};
+Field[1] = MathEval;
+Field[1].F = Sprintf("min(%g, %g + %g * max(0, sqrt(x*x + y*y + z*z) - %g))", h_far, h_contact, growth, r_fine);
+Background Field = 1;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeFromCurvature = 0;
