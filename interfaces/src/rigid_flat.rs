@@ -4,9 +4,11 @@
 //! The plane has unit normal n pointing from the flat toward the body and sits at
 //! s(t) = s0 + approach(t) along n. A point with reference position x on the body and offset h
 //! toward the flat (an asperity's height; 0 for surface points) has the gap
-//! g = x . n - h + u(x) . n - s(t), with u interpolated from its face's nodes. s0 is the lowest
-//! x . n - h over the points minus `initial_gap`, so approach 0 is first touch when
-//! initial_gap = 0. The law's value (positive pushes apart) acts on the body along +n with
+//! g = x . n - h + u(x) . n - s(t), with u interpolated from its face's nodes. s0 is a reference
+//! level minus `initial_gap`: over a surface, the lowest point of the surface (approach 0 is
+//! first touch); at discrete points, the lowest point of the surface minus the mean height
+//! (approach 0: the flat at asperity height above the undeformed pole, as in the reference
+//! paper; with scattered heights or no asperity at the pole, first touch comes later or earlier). The law's value (positive pushes apart) acts on the body along +n with
 //! weight w (the quadrature area for traction laws, 1 for force laws):
 //! f_a = N_a value w n, as internal force -f_a, tangent K_ab = -N_a N_b (d value/d g) w n x n.
 //! Reported: `approach`, `force` (total normal force of the flat on the body, positive
@@ -157,7 +159,8 @@ impl RigidFlat {
             return Err(CoreError::EmptyGroup { name: spec.surface.clone(), what: "faces".into() });
         }
         // nodes (the pole) can sit lower than any integration point
-        Self::assemble_new(spec, kinematics, law, normal, points, Some(lowest_node))
+        let reference = points.iter().map(|p| p.level).fold(lowest_node, f64::min);
+        Self::assemble_new(spec, kinematics, law, normal, points, reference)
     }
 
     /// A flat against discrete points placed on a surface group (3D), with a force law.
@@ -232,7 +235,8 @@ impl RigidFlat {
                 position: hit.position,
             });
         }
-        Self::assemble_new(spec, kinematics, law, normal, points, None)
+        let mean_height = discrete.iter().map(|d| d.height).sum::<f64>() / discrete.len() as f64;
+        Self::assemble_new(spec, kinematics, law, normal, points, pole_level - mean_height)
     }
 
     fn assemble_new(
@@ -241,9 +245,8 @@ impl RigidFlat {
         law: Arc<dyn InterfaceLaw>,
         normal: [f64; 3],
         points: Vec<InterfacePoint>,
-        lowest_extra: Option<f64>,
+        reference_level: f64,
     ) -> Result<Self, CoreError> {
-        let lowest = points.iter().map(|p| p.level).fold(lowest_extra.unwrap_or(f64::INFINITY), f64::min);
         let ns = law.n_state();
         let mut state = vec![0.0; points.len() * ns];
         if ns > 0 {
@@ -258,7 +261,7 @@ impl RigidFlat {
             law,
             dpn: kinematics.dofs_per_node(),
             normal,
-            base_level: lowest - spec.initial_gap,
+            base_level: reference_level - spec.initial_gap,
             approach_scale: spec.approach_scale,
             approach_amplitude: spec.approach_amplitude,
             points,
