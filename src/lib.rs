@@ -12,6 +12,7 @@ pub mod case;
 pub mod error;
 pub mod fields;
 pub mod laws;
+pub mod plots;
 pub mod plugin_check;
 pub mod run;
 

@@ -5,7 +5,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use stiction::case;
-use stiction::run::{RunOptions, output_directory};
+use stiction::run::RunOptions;
 
 #[derive(Parser)]
 #[command(name = "stiction", version, about = "Implicit finite elements for adhesive and cohesive contact")]
@@ -244,20 +244,31 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Run { case, out, sets, quiet } => (|| {
-            let loaded = case::load(&case, &sets)?;
             let options = RunOptions { out, progress: !quiet && std::io::stderr().is_terminal() };
-            let dir = output_directory(&loaded, &options);
-            let summary = stiction::run::run(&loaded, &options)?;
-            println!(
-                "{}: {} increments ({} cut), {} Newton iterations, {:.2} s; {} free dofs; output in {}",
-                summary.case,
-                summary.increments,
-                summary.cut_increments,
-                summary.newton_iterations,
-                summary.wall_seconds,
-                summary.n_free_dofs,
-                dir.display()
-            );
+            for summary in stiction::run::run_sweep(&case, &sets, &options)? {
+                println!(
+                    "{}: {} increments ({} cut), {} Newton iterations, {:.2} s; {} free dofs; output in {}",
+                    summary.case,
+                    summary.increments,
+                    summary.cut_increments,
+                    summary.newton_iterations,
+                    summary.wall_seconds,
+                    summary.n_free_dofs,
+                    summary.output_directory.display()
+                );
+                for i in &summary.interfaces {
+                    println!(
+                        "  {}: max force {:.3} uN at approach {:.3}; pull-off {:.3} uN at {:.3}; max real area {:.1}; {} in contact at max",
+                        i.name,
+                        i.max_force * 1e-3,
+                        i.approach_at_max_force,
+                        i.pull_off_force * 1e-3,
+                        i.approach_at_pull_off,
+                        i.max_contact_area,
+                        i.n_contact_at_max_force
+                    );
+                }
+            }
             Ok(())
         })(),
         Command::Check { case, sets } => (|| {

@@ -40,6 +40,19 @@ pub struct Case {
     pub solver: SolverSpec,
     #[serde(default)]
     pub output: OutputSpec,
+    /// Run the case once per value of one key (e.g. several maximum approaches); each run gets
+    /// its own folder and the histories a combined plot.
+    pub sweep: Option<SweepSpec>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSpec {
+    /// Any case key, written as for --set (e.g. "amplitudes.cycle.value.1").
+    pub key: String,
+    pub values: Vec<f64>,
+    /// Name of the swept quantity in folder names and plot legends (default: the key).
+    pub label: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]

@@ -81,3 +81,35 @@ fn a_failed_run_keeps_its_converged_increments() {
     assert_eq!(pvd.matches("<DataSet").count() * 2, vtus, "the .pvd lists exactly the written solid frames");
     assert!(!std::fs::read_dir(&out).unwrap().any(|e| e.unwrap().path().to_string_lossy().ends_with(".tmp")));
 }
+
+#[test]
+fn a_sweep_runs_each_value_in_its_own_folder_with_combined_plots() {
+    let out = scratch("sweep");
+    let case = workspace_root().join("cases/validation/hertz-axisym.toml");
+    let sets: Vec<String> = [
+        "mesh.parameters.h_contact=10.0",
+        "sweep={ key = \"interfaces.0.approach\", values = [0.5, 1.0], label = \"approach\" }",
+        "steps.0.initial_increment=0.25",
+        "steps.0.max_increment=0.25",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let options = stiction::run::RunOptions { out: Some(out.clone()), progress: false };
+    let summaries = stiction::run::run_sweep(&case, &sets, &options).unwrap();
+    assert_eq!(summaries.len(), 2);
+    // the second run presses twice as far: Hertz F ~ d^1.5 -> ratio 2^1.5 = 2.83 (within 5%)
+    let ratio = summaries[1].interfaces[0].max_force / summaries[0].interfaces[0].max_force;
+    assert!((ratio / 2f64.powf(1.5) - 1.0).abs() < 0.05, "force ratio {ratio}");
+    for v in ["approach=0.5", "approach=1"] {
+        let dir = out.join(v);
+        assert!(dir.join("history.csv").exists() && dir.join("summary.json").exists(), "{}", dir.display());
+        let png = std::fs::read(dir.join("force_approach.png")).unwrap();
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    }
+    for f in ["combined_force_approach.png", "combined_area_approach.svg", "sweep.json"] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+    let svg = std::fs::read_to_string(out.join("combined_force_approach.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("approach = 0.5") && svg.contains("approach = 1"));
+}
