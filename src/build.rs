@@ -481,7 +481,11 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
             approach_amplitude: amplitude(format!("{key}.amplitude"), &spec.amplitude)?,
             initial_gap: spec.initial_gap,
             extra_order: spec.quadrature_order,
+            viscosity: spec.viscosity,
         };
+        if !(spec.viscosity >= 0.0 && spec.viscosity.is_finite()) {
+            return Err(case.error(format!("{key}.viscosity"), "must be a finite number >= 0"));
+        }
         let flat = match &spec.points {
             None => stiction_interfaces::RigidFlat::over_surface(&mesh, kin, flat_spec, law),
             Some(points) => {

@@ -74,6 +74,10 @@ pub struct InterfaceSummary {
     pub work_of_flat: f64,
     /// Increments where points came into or out of contact (see events.csv).
     pub contact_events: usize,
+    /// Energy dissipated by the viscous regularisation, and its share of |work_of_flat| (kept
+    /// small: it measures how far the crossing of instabilities is from quasi-static).
+    pub viscous_dissipation: f64,
+    pub viscous_share_of_work: f64,
 }
 
 /// Output directory of a case: `--out`, else `output.directory`, else `out/<name>`.
@@ -224,13 +228,13 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         .map(|s| s.to_string())
         .collect(),
     )?;
-    // name -> (approach, force, contact_area, n_contact) of the last committed increment
-    let observe = |c: &dyn stiction_core::model::Contribution| -> [f64; 4] {
+    // per interface: (approach, force, contact_area, n_contact, viscous_dissipation) last committed
+    let observe = |c: &dyn stiction_core::model::Contribution| -> [f64; 5] {
         let h = c.history();
         let get = |k: &str| h.iter().find(|(n, _)| n == k).map(|(_, v)| *v).unwrap_or(0.0);
-        [get("approach"), get("force"), get("contact_area"), get("n_contact")]
+        [get("approach"), get("force"), get("contact_area"), get("n_contact"), get("viscous_dissipation")]
     };
-    let mut observed: Vec<[f64; 4]> = model.contributions.iter().map(|c| observe(c.as_ref())).collect();
+    let mut observed: Vec<[f64; 5]> = model.contributions.iter().map(|c| observe(c.as_ref())).collect();
     let mut had_contact = vec![false; model.contributions.len()];
     let mut cuts_since_commit = 0usize;
     let bar = if options.progress {
@@ -364,8 +368,16 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                             s.contact_area_at_pull_off = now[2];
                         }
                         s.max_contact_area = s.max_contact_area.max(now[2]);
+                        s.viscous_dissipation = now[4];
+                        s.viscous_share_of_work =
+                            if s.work_of_flat != 0.0 { now[4] / s.work_of_flat.abs() } else { 0.0 };
                         if now[3] != before[3] || cuts_since_commit > 0 {
-                            let kind = if now[3] < before[3] {
+                            // a jump: the increment had to be cut and the force changed by more
+                            // than 5% of the largest force magnitude seen so far
+                            let scale = s.max_force.max(-s.pull_off_force).max(now[1].abs());
+                            let kind = if cuts_since_commit > 0 && (now[1] - before[1]).abs() > 0.05 * scale {
+                                "jump"
+                            } else if now[3] < before[3] {
                                 "contact_lost"
                             } else if now[3] > before[3] {
                                 "contact_gained"

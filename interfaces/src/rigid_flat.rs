@@ -12,7 +12,16 @@
 //! weight w (the quadrature area for traction laws, 1 for force laws):
 //! f_a = N_a value w n, as internal force -f_a, tangent K_ab = -N_a N_b (d value/d g) w n x n.
 //! Reported: `approach`, `force` (total normal force of the flat on the body, positive
-//! compressive), `contact_area`, `n_contact`.
+//! compressive, law force only), `contact_area`, `n_contact`, `viscous_dissipation`.
+//!
+//! Optional viscous regularisation (`viscosity` zeta > 0, a pseudo-time) for crossing adhesive
+//! instabilities (jump-in, jump-out): each point adds -zeta |k_c| (g - g_c) / dt to its value
+//! (resisting the change of gap), with tangent -zeta |k_c| / dt, where g_c and k_c are the gap and the law's tangent at the last
+//! converged increment and dt the pseudo-time increment. It acts only where the law is active
+//! (k_c != 0); away from instabilities it is a fraction zeta / dt of the law's own incremental
+//! response, and when an instability cuts the increment it stiffens, so the path stays
+//! continuous in pseudo-time. Its dissipated energy, sum zeta |k_c| (g - g_c)^2 / dt w, is
+//! accumulated and reported so it can be kept small.
 
 use crate::surface_locator::SurfaceLocator;
 use std::sync::Arc;
@@ -38,6 +47,8 @@ pub struct RigidFlatSpec {
     pub initial_gap: f64,
     /// Extra Gauss points per face direction (surface interfaces).
     pub extra_order: usize,
+    /// Viscous regularisation zeta (0: none), a pseudo-time: see the module documentation.
+    pub viscosity: f64,
 }
 
 /// A discrete point: in-plane coordinates (along two directions orthogonal to the normal,
@@ -78,6 +89,14 @@ pub struct RigidFlat {
     committed_summary: [f64; 4],
     trial_summary: [f64; 4],
     committed_fields: Vec<Vec<f64>>,
+    viscosity: f64,
+    gap_committed: Vec<f64>,
+    slope_committed: Vec<f64>,
+    slope: Vec<f64>,
+    time_committed: f64,
+    viscous_committed: f64,
+    viscous_trial: f64,
+    trial_time: f64,
 }
 
 fn unit_normal(spec: &RigidFlatSpec, kinematics: Kinematics) -> Result<[f64; 3], CoreError> {
@@ -274,6 +293,14 @@ impl RigidFlat {
             committed_summary: [0.0; 4],
             trial_summary: [0.0; 4],
             committed_fields: vec![vec![0.0; n]; n_fields],
+            viscosity: spec.viscosity,
+            gap_committed: Vec::new(),
+            slope_committed: Vec::new(),
+            slope: vec![0.0; n],
+            time_committed: 0.0,
+            viscous_committed: 0.0,
+            viscous_trial: 0.0,
+            trial_time: 0.0,
         })
     }
 
@@ -311,6 +338,9 @@ impl Contribution for RigidFlat {
         let level = self.base_level + self.approach(time);
         let n = self.normal;
         let (mut total, mut area, mut count) = (0.0, 0.0, 0.0);
+        let dt = time - self.time_committed;
+        let viscous = self.viscosity > 0.0 && dt > 0.0 && self.slope_committed.len() == self.points.len();
+        let mut dissipated = 0.0;
         for (i, p) in self.points.iter().enumerate() {
             let mut un = 0.0;
             for (a, &node) in p.nodes.iter().enumerate() {
@@ -341,12 +371,23 @@ impl Contribution for RigidFlat {
                 area += point_area;
                 count += 1.0;
             }
+            self.slope[i] = r.tangent;
+            let (mut value, mut slope) = (r.value, r.tangent);
+            if viscous {
+                let eta = self.viscosity * self.slope_committed[i].abs();
+                let dg = g - self.gap_committed[i];
+                // resists the change of gap: opening pulls back, closing pushes back
+                value -= eta * dg / dt;
+                slope -= eta / dt;
+                dissipated += eta * dg * dg / dt * p.weight;
+            }
             for (a, &node) in p.nodes.iter().enumerate() {
                 for k in 0..dpn {
-                    force[node * dpn + k] -= p.shape[a] * r.value * n[k] * p.weight;
+                    force[node * dpn + k] -= p.shape[a] * value * n[k] * p.weight;
                 }
             }
             if let Some(add) = tangent.as_deref_mut() {
+                let r = stiction_core::interface_law::LawResponse { tangent: slope, ..r };
                 if r.tangent != 0.0 {
                     for (a, &na) in p.nodes.iter().enumerate() {
                         for (b, &nb) in p.nodes.iter().enumerate() {
@@ -364,6 +405,8 @@ impl Contribution for RigidFlat {
             }
         }
         self.trial_summary = [self.approach(time), total, area, count];
+        self.trial_time = time;
+        self.viscous_trial = self.viscous_committed + dissipated;
         Ok(())
     }
 
@@ -373,6 +416,10 @@ impl Contribution for RigidFlat {
 
     fn commit(&mut self) {
         self.state_committed.copy_from_slice(&self.state_trial);
+        self.gap_committed.clone_from(&self.gap);
+        self.slope_committed.clone_from(&self.slope);
+        self.time_committed = self.trial_time;
+        self.viscous_committed = self.viscous_trial;
         self.committed_summary = self.trial_summary;
         let ns = self.law.n_state();
         self.committed_fields[0].copy_from_slice(&self.gap);
@@ -399,6 +446,7 @@ impl Contribution for RigidFlat {
             ("force".into(), force),
             ("contact_area".into(), area),
             ("n_contact".into(), count),
+            ("viscous_dissipation".into(), self.viscous_committed),
         ]
     }
 

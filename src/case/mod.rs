@@ -200,6 +200,11 @@ pub struct InterfaceSpec {
     /// Extra Gauss points per face direction (default 0; short-range laws want 2 or more).
     #[serde(default)]
     pub quadrature_order: usize,
+    /// Viscous regularisation zeta (a pseudo-time) for crossing adhesive instabilities (default
+    /// 0: none): adds -zeta |k_c| (g - g_c) / dt per point (resisting the change of gap), k_c the law's tangent at the last
+    /// converged increment; its dissipated energy is reported as `viscous_dissipation`.
+    #[serde(default)]
+    pub viscosity: f64,
     /// Discrete points (e.g. asperities) instead of the whole surface; needs a force law.
     pub points: Option<PointsSpec>,
 }
