@@ -31,6 +31,7 @@ fn builtin_holders() -> &'static [DescriptorHolder] {
             DescriptorHolder::new::<stiction_law_frictionless_contact::FrictionlessContact>(),
             DescriptorHolder::new::<stiction_law_lennard_jones::LennardJones>(),
             DescriptorHolder::new::<stiction_law_ru_asperity::RuAsperity>(),
+            DescriptorHolder::new::<stiction_law_cohesive_zone::CohesiveZone>(),
         ]
     })
 }

@@ -400,7 +400,14 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                             ])?;
                         }
                         had_contact[k] |= now[3] > 0.0;
-                        if step.until_separated.as_deref() == Some(c.name()) && had_contact[k] && now[3] == 0.0 {
+                        // separated: nothing in contact and no force left (adhesive laws pull
+                        // after compressive contact is lost)
+                        let force_scale = s.max_force.max(-s.pull_off_force);
+                        if step.until_separated.as_deref() == Some(c.name())
+                            && had_contact[k]
+                            && now[3] == 0.0
+                            && now[1].abs() <= 1e-3 * force_scale
+                        {
                             separated = true;
                         }
                         observed[k] = now;

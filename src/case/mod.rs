@@ -253,7 +253,8 @@ pub struct StepSpec {
     #[serde(default = "one_usize")]
     pub output_every: usize,
     /// End the step (and the run, if it is the last) once this interface has had contact and
-    /// has none left, e.g. when every asperity has pulled off.
+    /// has none left with its force below 1e-3 of the largest force magnitude so far, e.g. when
+    /// every asperity has pulled off.
     pub until_separated: Option<String>,
 }
 
