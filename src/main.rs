@@ -72,6 +72,18 @@ enum Command {
         #[arg(long)]
         work_of_adhesion: Option<f64>,
     },
+    /// Overlay the force and contact-area histories of several runs (e.g. rough vs smooth) in
+    /// PNG and SVG plots.
+    Plot {
+        /// Run output directories (each with a history.csv that has interface columns).
+        runs: Vec<PathBuf>,
+        /// Directory for the plots.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Plot title.
+        #[arg(long, default_value = "comparison")]
+        title: String,
+    },
     /// Write the documented SURROGATE nano-asperity table (not MD) for a work of adhesion.
     SurrogateTable {
         /// Work of adhesion in J/m^2.
@@ -237,6 +249,14 @@ fn calibrate(table: &std::path::Path, output: &std::path::Path, lo: usize, uo: u
         return ExitCode::from(1);
     }
     println!("wrote {}", output.display());
+    match stiction::plots::plot_calibration(output, &parsed, &calibration) {
+        Ok(()) => println!(
+            "plots of data vs fits: {}_force.png/.svg, {}_area.png/.svg",
+            output.with_extension("").display(),
+            output.with_extension("").display()
+        ),
+        Err(e) => eprintln!("warning: plots not written: {e}"),
+    }
     ExitCode::SUCCESS
 }
 
@@ -289,6 +309,31 @@ fn main() -> ExitCode {
         })(),
         Command::Calibrate { table, output, loading_order, unloading_order, work_of_adhesion } => {
             return calibrate(&table, &output, loading_order, unloading_order, work_of_adhesion);
+        }
+        Command::Plot { runs, output, title } => {
+            let mut curves = Vec::new();
+            for r in &runs {
+                let label = r.file_name().and_then(|s| s.to_str()).unwrap_or("run").to_string();
+                match stiction::plots::read_history(&r.join("history.csv"), &label) {
+                    Some(c) => curves.push(c),
+                    None => {
+                        eprintln!(
+                            "error: '{}' has no history.csv with approach, force and contact_area columns",
+                            r.display()
+                        );
+                        return ExitCode::from(2);
+                    }
+                }
+            }
+            if let Err(e) = std::fs::create_dir_all(&output)
+                .map_err(|e| e.to_string())
+                .and_then(|_| stiction::plots::plot_curves(&output, "", &title, &curves))
+            {
+                eprintln!("error: {e}");
+                return ExitCode::from(1);
+            }
+            println!("wrote {}/force_approach.png/.svg and area_approach.png/.svg", output.display());
+            Ok(())
         }
         Command::SurrogateTable { work_of_adhesion, output, samples } => {
             if !(work_of_adhesion > 0.0) || samples < 10 {

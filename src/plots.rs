@@ -113,3 +113,92 @@ pub fn plot_curves(dir: &Path, prefix: &str, title: &str, curves: &[Curve]) -> R
     }
     Ok(())
 }
+
+type Branch = (String, Vec<(f64, f64, f64)>, Vec<f64>, Vec<f64>, (f64, f64));
+
+fn draw_calibration<DB: DrawingBackend>(
+    root: DrawingArea<DB, plotters::coord::Shift>,
+    branches: &[Branch],
+    idx: usize,
+    title: &str,
+    y_label: &str,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    use stiction_law_ru_asperity::polynomial::value;
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let pick = |p: &(f64, f64, f64)| if idx == 1 { p.1 } else { p.2 };
+    let all: Vec<(f64, f64)> = branches.iter().flat_map(|b| b.1.iter().map(|p| (p.0, pick(p)))).collect();
+    let (x0, x1) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+    let (y0, y1) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.1), a.1.max(p.1)));
+    let (px, py) = (0.05 * (x1 - x0).max(1e-9), 0.05 * (y1 - y0).max(1e-9));
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((x0 - px)..(x1 + px), (y0 - py)..(y1 + py))
+        .map_err(|e| e.to_string())?;
+    chart.configure_mesh().x_desc("distance (nm)").y_desc(y_label).draw().map_err(|e| e.to_string())?;
+    for (i, (label, rows, fforce, farea, (a, b))) in branches.iter().enumerate() {
+        let color = Palette99::pick(i).to_rgba();
+        let coeffs = if idx == 1 { fforce } else { farea };
+        chart
+            .draw_series(rows.iter().map(|p| Circle::new((p.0, pick(p)), 2, color.filled())))
+            .map_err(|e| e.to_string())?;
+        let line: Vec<(f64, f64)> =
+            (0..=200).map(|k| a + (b - a) * k as f64 / 200.0).map(|x| (x, value(coeffs, x))).collect();
+        chart
+            .draw_series(LineSeries::new(line, color.stroke_width(2)))
+            .map_err(|e| e.to_string())?
+            .label(label.clone())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| e.to_string())?;
+    root.present().map_err(|e| e.to_string())
+}
+
+/// Plots a calibration table against its fitted polynomials: force and area vs distance, one
+/// colour per branch (loading, and each unloading maximum); points are data, lines the fits.
+/// Writes `<stem>_force.{png,svg}` and `<stem>_area.{png,svg}` next to `stem`.
+pub fn plot_calibration(
+    stem: &Path,
+    table: &stiction_law_ru_asperity::fit::Table,
+    calibration: &stiction_law_ru_asperity::calibration::Calibration,
+) -> Result<(), String> {
+    let mut branches: Vec<Branch> = Vec::new();
+    let load: Vec<(f64, f64, f64)> =
+        table.rows.iter().filter(|r| r.loading).map(|r| (r.distance, r.force, r.area)).collect();
+    let l = &calibration.loading;
+    branches.push(("loading".into(), load, l.force.clone(), l.area.clone(), (l.d_start, l.d_end)));
+    for u in &calibration.unloading {
+        let rows = table
+            .rows
+            .iter()
+            .filter(|r| !r.loading && r.max_distance == u.d_max)
+            .map(|r| (r.distance, r.force, r.area))
+            .collect();
+        branches.push((
+            format!("unloading from {}", u.d_max),
+            rows,
+            u.force.clone(),
+            u.area.clone(),
+            (u.d_end, u.d_max),
+        ));
+    }
+    let base = stem.file_stem().and_then(|s| s.to_str()).unwrap_or("calibration").to_string();
+    for (what, idx, y_label) in [("force", 1usize, "force (nN, + compressive)"), ("area", 2usize, "area (nm^2)")] {
+        let title = format!("{what} (w = {} J/m^2): data (points) and fits (lines)", calibration.work_of_adhesion);
+        let png = stem.with_file_name(format!("{base}_{what}.png"));
+        let svg = stem.with_file_name(format!("{base}_{what}.svg"));
+        draw_calibration(BitMapBackend::new(&png, (900, 600)).into_drawing_area(), &branches, idx, &title, y_label)?;
+        draw_calibration(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), &branches, idx, &title, y_label)?;
+    }
+    Ok(())
+}
