@@ -13,8 +13,8 @@ import glob
 import os
 import sys
 
-from paraview.simple import (ColorBy, Clip, CreateView, GetColorTransferFunction, GetDisplayProperties,
-                             PVDReader, Render, ResetCamera, SaveScreenshot, Show, Slice)
+from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction,
+                             PVDReader, Render, SaveScreenshot, Show, Slice)
 
 out = sys.argv[1]
 pvds = sorted(glob.glob(os.path.join(out, "*.pvd")))
@@ -57,16 +57,8 @@ def section_view(field, title_png):
     lut.ApplyPreset("Jet", True)
     display.SetScalarBarVisibility(view, True)
     lut.RescaleTransferFunction(*source.PointData[field].GetRange())
-    # zoom on the contact zone: the 250 nm around the pole (in the x-z plane for 3D, x-y axisym)
-    if is_3d:
-        view.CameraPosition = [0.0, -2000.0, 120.0]
-        view.CameraFocalPoint = [0.0, 0.0, 120.0]
-        view.CameraViewUp = [0.0, 0.0, 1.0]
-    else:
-        view.CameraPosition = [120.0, 120.0, 2000.0]
-        view.CameraFocalPoint = [120.0, 120.0, 0.0]
-        view.CameraViewUp = [0.0, 1.0, 0.0]
     Render(view)  # the first render resets the camera: set it afterwards
+    # zoom on the contact zone: the 250 nm around the pole (in the x-z plane for 3D, x-y axisym)
     if is_3d:
         view.CameraPosition = [0.0, -2000.0, 120.0]
         view.CameraFocalPoint = [0.0, 0.0, 120.0]

@@ -139,3 +139,26 @@ pub fn model_with(mesh: Mesh, kin: Kinematics, material: Arc<dyn stiction_core::
     }
     model
 }
+
+/// Every integration point of the model's solid: (set index, cell, point, position, stress),
+/// with the stresses of the last assembly.
+pub fn integration_points(model: &Model) -> Vec<(usize, usize, usize, [f64; 3], [f64; 6])> {
+    use stiction_core::element::ElementKernel;
+    let mut out = Vec::new();
+    for (si, set) in model.sets.iter().enumerate() {
+        let kernel = stiction_elements::SolidKernel::new(
+            set.kernel.cell_type(),
+            model.kinematics,
+            stiction_elements::QuadratureChoice::Standard,
+        )
+        .unwrap();
+        let nq = kernel.n_points();
+        for c in 0..set.n_cells() {
+            let coords: Vec<[f64; 3]> = set.cell(c).iter().map(|&n| model.mesh.nodes[n]).collect();
+            for (q, x) in kernel.point_positions(&coords).into_iter().enumerate() {
+                out.push((si, c, q, x, set.stresses()[c * nq + q]));
+            }
+        }
+    }
+    out
+}

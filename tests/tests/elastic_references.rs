@@ -35,38 +35,21 @@ fn check_lame(case: &str, label: &str, tol_u: f64) {
     // Hoop stress at the integration points, where stresses are most accurate: mean error.
     let mut sum = 0.0;
     let mut count = 0.0;
-    for set in &m.sets {
-        let kernel = stiction_elements::SolidKernel::new(
-            set.kernel.cell_type(),
-            m.kinematics,
-            stiction_elements::QuadratureChoice::Standard,
-        )
-        .unwrap();
-        for c in 0..set.n_cells() {
-            let coords: Vec<[f64; 3]> = set.cell(c).iter().map(|&n| m.mesh.nodes[n]).collect();
-            for (q, x) in kernel.point_positions(&coords).iter().enumerate() {
-                let s = set.stresses()[c * kernel_points(&kernel) + q];
-                // hoop direction: in 3D use the z-axis-free direction e_phi = (-y, x, 0)/|.|
-                let hoop = if dpn == 2 {
-                    s[2]
-                } else {
-                    let rxy = (x[0] * x[0] + x[1] * x[1]).sqrt();
-                    let (c1, s1) = (-x[1] / rxy, x[0] / rxy);
-                    s[0] * c1 * c1 + s[1] * s1 * s1 + 2.0 * s[3] * c1 * s1
-                };
-                let rho = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
-                sum += ((hoop - lame_hoop(rho, p, a, b)) / lame_hoop(rho, p, a, b)).abs();
-                count += 1.0;
-            }
-        }
+    for (_, _, _, x, s) in stiction_tests::integration_points(m) {
+        // hoop direction: in 3D use the z-axis-free direction e_phi = (-y, x, 0)/|.|
+        let hoop = if dpn == 2 {
+            s[2]
+        } else {
+            let rxy = (x[0] * x[0] + x[1] * x[1]).sqrt();
+            let (c1, s1) = (-x[1] / rxy, x[0] / rxy);
+            s[0] * c1 * c1 + s[1] * s1 * s1 + 2.0 * s[3] * c1 * s1
+        };
+        let rho = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+        sum += ((hoop - lame_hoop(rho, p, a, b)) / lame_hoop(rho, p, a, b)).abs();
+        count += 1.0;
     }
     println!("{case}: mean relative error of the hoop stress at integration points {:.3e}", sum / count);
     assert!(sum / count < 0.01, "{case}: hoop stress error {}", sum / count);
-}
-
-fn kernel_points(k: &stiction_elements::SolidKernel) -> usize {
-    use stiction_core::element::ElementKernel;
-    k.n_points()
 }
 
 #[test]

@@ -45,23 +45,11 @@ fn hertz_axisymmetric_force_radius_and_subsurface_stress() {
     let p0 = 2.0 * e_star / std::f64::consts::PI * (d / r).sqrt();
     let m = &built.model;
     let (mut vm_max, mut depth) = (0.0, 0.0);
-    for set in &m.sets {
-        let kernel = stiction_elements::SolidKernel::new(
-            set.kernel.cell_type(),
-            m.kinematics,
-            stiction_elements::QuadratureChoice::Standard,
-        )
-        .unwrap();
-        let nq = set.kernel.n_points();
-        for c in 0..set.n_cells() {
-            let coords: Vec<[f64; 3]> = set.cell(c).iter().map(|&n| m.mesh.nodes[n]).collect();
-            for (q, x) in kernel.point_positions(&coords).iter().enumerate() {
-                let vm = von_mises(&set.stresses()[c * nq + q]);
-                if vm > vm_max {
-                    vm_max = vm;
-                    depth = x[1];
-                }
-            }
+    for (_, _, _, x, stress) in stiction_tests::integration_points(m) {
+        let vm = von_mises(&stress);
+        if vm > vm_max {
+            vm_max = vm;
+            depth = x[1];
         }
     }
     println!("max von Mises {vm_max:.3} GPa = {:.3} p0 at depth {depth:.2} nm = {:.3} a", vm_max / p0, depth / a);

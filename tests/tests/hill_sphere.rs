@@ -27,25 +27,15 @@ fn elastic_plastic_boundary_and_outer_displacement_match_hill() {
     println!("u_b = {ub:.6e}, Hill {exact:.6e} ({:+.2}%)", 100.0 * (ub / exact - 1.0));
     assert!((ub / exact - 1.0).abs() < 0.01);
     // plastic front: largest radius of an integration point with plastic strain
-    let set = &m.sets[0];
-    let kernel = stiction_elements::SolidKernel::new(
-        set.kernel.cell_type(),
-        m.kinematics,
-        stiction_elements::QuadratureChoice::Standard,
-    )
-    .unwrap();
-    let nq = set.kernel.n_points();
+    let nq = m.sets[0].kernel.n_points();
     let (mut front, mut inner_elastic) = (0.0f64, f64::INFINITY);
-    for cell in 0..set.n_cells() {
-        let coords: Vec<[f64; 3]> = set.cell(cell).iter().map(|&n| m.mesh.nodes[n]).collect();
-        for (q, x) in kernel.point_positions(&coords).iter().enumerate() {
-            let rho = (x[0] * x[0] + x[1] * x[1]).sqrt();
-            let eqps = set.committed_state()[(cell * nq + q) * 15 + 12];
-            if eqps > 0.0 {
-                front = front.max(rho);
-            } else {
-                inner_elastic = inner_elastic.min(rho);
-            }
+    for (si, cell, q, x, _) in stiction_tests::integration_points(m) {
+        let rho = (x[0] * x[0] + x[1] * x[1]).sqrt();
+        let eqps = m.sets[si].committed_state()[(cell * nq + q) * 15 + 12];
+        if eqps > 0.0 {
+            front = front.max(rho);
+        } else {
+            inner_elastic = inner_elastic.min(rho);
         }
     }
     println!("plastic points reach rho = {front:.4}, elastic points start at rho = {inner_elastic:.4}; Hill c = {c}");

@@ -86,6 +86,11 @@ pub fn write_vtu(
             cell: cell_fields.iter().map(attribute).collect(),
         },
     };
+    write_piece(path, piece)
+}
+
+/// Serializes one unstructured-grid piece as VTK XML and writes it atomically.
+fn write_piece(path: &Path, piece: UnstructuredGridPiece) -> Result<()> {
     let vtk = Vtk {
         version: Version::new((1, 0)),
         title: String::new(),
@@ -156,15 +161,5 @@ pub fn write_points_vtu(path: &Path, points: &[[f64; 3]], fields: &[Field]) -> R
         },
         data: Attributes { point: fields.iter().map(attribute).collect(), cell: Vec::new() },
     };
-    let vtk = Vtk {
-        version: Version::new((1, 0)),
-        title: String::new(),
-        byte_order: ByteOrder::LittleEndian,
-        data: DataSet::inline(piece),
-        file_path: None,
-    };
-    let mut bytes = Vec::new();
-    vtk.write_xml(&mut bytes)
-        .map_err(|e| CoreError::Write { path: path.to_path_buf(), source: std::io::Error::other(e.to_string()) })?;
-    write_atomically(path, &bytes)
+    write_piece(path, piece)
 }
