@@ -1,0 +1,24 @@
+// Quarter of a hemisphere of radius R (3D): x >= 0, y >= 0, pole at the origin touching the flat
+// z = 0, base at z = R. Size h_contact within r_fine of the pole, growing by `growth` per unit
+// distance, up to h_far. Groups: body, surface (spherical), base (z = R), sym_x (x = 0),
+// sym_y (y = 0).
+SetFactory("OpenCASCADE");
+DefineConstant[ R = 1000.0, h_contact = 8.0, r_fine = 40.0, growth = 0.4, h_far = 150.0 ];
+Sphere(1) = {0, 0, R, R, -Pi/2, 0, Pi/2};
+e = 1e-6 * R;
+Physical Volume("body") = {1};
+Physical Surface("base") = Surface In BoundingBox{-e, -e, R - e, R + e, R + e, R + e};
+Physical Surface("sym_x") = Surface In BoundingBox{-e, -e, -e, e, R + e, R + e};
+Physical Surface("sym_y") = Surface In BoundingBox{-e, -e, -e, R + e, e, R + e};
+all() = Surface{:};
+flat() = Surface In BoundingBox{-e, -e, R - e, R + e, R + e, R + e};
+flat() += Surface In BoundingBox{-e, -e, -e, e, R + e, R + e};
+flat() += Surface In BoundingBox{-e, -e, -e, R + e, e, R + e};
+Physical Surface("surface") = {all()};
+Physical Surface("surface") -= {flat()};
+Field[1] = MathEval;
+Field[1].F = Sprintf("min(%g, %g + %g * max(0, sqrt(x*x + y*y + z*z) - %g))", h_far, h_contact, growth, r_fine);
+Background Field = 1;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeFromCurvature = 0;
