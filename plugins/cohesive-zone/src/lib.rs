@@ -9,9 +9,10 @@
 //! * `shape = 1`, exponential (Xu & Needleman 1993, normal part): sigma = -(G_c/d_c)(g/d_c)
 //!   exp(-g/d_c) with d_c = G_c / (e sigma_max) (peak sigma_max at g = d_c; energy G_c);
 //!   reversible, no damage.
-//! A point that never touched carries no adhesion. State: [bonded, largest opening m].
+//! A point that never touched carries no adhesion, unless `initially_bonded = 1` (an uncracked
+//! ligament, e.g. a double cantilever beam's). State: [bonded, largest opening m].
 //! Parameters: G_c (energy per area), sigma_max (stress), penalty k (0: chosen by the host,
-//! 100 E / h), shape. k must exceed sigma_max^2 / (2 G_c) (onset before failure).
+//! 100 E / h), shape, initially_bonded. k must exceed sigma_max^2 / (2 G_c) (onset before failure).
 
 use stiction_law_sdk::{Law, LawKind, Parameter, Response};
 
@@ -20,6 +21,7 @@ pub struct CohesiveZone {
     pub sigma_max: f64,
     pub k: f64,
     pub exponential: bool,
+    pub initially_bonded: bool,
 }
 
 impl CohesiveZone {
@@ -61,11 +63,19 @@ impl Law for CohesiveZone {
                 f64::INFINITY,
             ),
             Parameter::optional(c"shape", c"-", c"0: bilinear with damage, 1: exponential", 0.0, 0.0, 1.0),
+            Parameter::optional(
+                c"initially_bonded",
+                c"-",
+                c"1: bonded from the start (an uncracked ligament); 0: bonds on first contact",
+                0.0,
+                0.0,
+                1.0,
+            ),
         ]
     }
 
     fn create(p: &[f64], _config: &str) -> Result<Self, String> {
-        let law = Self { g_c: p[0], sigma_max: p[1], k: p[2], exponential: p[3] >= 0.5 };
+        let law = Self { g_c: p[0], sigma_max: p[1], k: p[2], exponential: p[3] >= 0.5, initially_bonded: p[4] >= 0.5 };
         if !(law.k > 0.0) {
             return Err("penalty must be positive".into());
         }
@@ -80,6 +90,11 @@ impl Law for CohesiveZone {
             ));
         }
         Ok(law)
+    }
+
+    fn initialize_state(&self, state: &mut [f64]) {
+        state[0] = if self.initially_bonded { 1.0 } else { 0.0 };
+        state[1] = 0.0;
     }
 
     fn evaluate(&self, g: f64, old: &[f64], new: &mut [f64]) -> Result<Response, String> {
@@ -145,10 +160,10 @@ mod tests {
 
     #[test]
     fn the_energy_under_each_law_is_g_c() {
-        let bilinear = CohesiveZone::create(&[1.0, 6.0, 2e4, 0.0], "").unwrap();
+        let bilinear = CohesiveZone::create(&[1.0, 6.0, 2e4, 0.0, 0.0], "").unwrap();
         let w = work_of_separation(&bilinear, bilinear.d_f() * 1.01);
         assert!((w - 1.0).abs() < 1e-6, "bilinear {w}");
-        let exponential = CohesiveZone::create(&[1.0, 6.0, 2e4, 1.0], "").unwrap();
+        let exponential = CohesiveZone::create(&[1.0, 6.0, 2e4, 1.0, 0.0], "").unwrap();
         let dc = 1.0 / (std::f64::consts::E * 6.0);
         let w = work_of_separation(&exponential, 60.0 * dc);
         assert!((w - 1.0).abs() < 1e-6, "exponential {w}");
@@ -156,7 +171,7 @@ mod tests {
 
     #[test]
     fn secant_unloading_and_no_adhesion_before_first_contact() {
-        let law = CohesiveZone::create(&[1.0, 6.0, 2e4, 0.0], "").unwrap();
+        let law = CohesiveZone::create(&[1.0, 6.0, 2e4, 0.0, 0.0], "").unwrap();
         let mut s = [0.0; 2];
         assert_eq!(law.evaluate(0.01, &[0.0, 0.0], &mut s).unwrap().value, 0.0, "never touched: no adhesion");
         // bond, open to half the final opening, unload to a quarter of that
@@ -165,6 +180,6 @@ mod tests {
         let committed = s;
         let back = law.evaluate(0.25 * m, &committed, &mut s).unwrap();
         assert!((back.value - 0.25 * r.value).abs() < 1e-9 * r.value.abs(), "secant to the origin");
-        assert!(CohesiveZone::create(&[1.0, 6.0, 10.0, 0.0], "").is_err(), "k below sigma_max^2 / 2 G_c");
+        assert!(CohesiveZone::create(&[1.0, 6.0, 10.0, 0.0, 0.0], "").is_err(), "k below sigma_max^2 / 2 G_c");
     }
 }
