@@ -100,14 +100,14 @@ impl LawRegistry {
             return Ok(l.clone());
         }
         let mut problems = Vec::new();
-        for (path, r) in self.discover() {
+        for (_, r) in self.discover() {
             match r {
                 Ok(l) if l.name == name_or_path => return Ok(l),
                 Ok(_) => {}
+                // a plugin of the wanted name may be the one with the wrong ABI: say so
                 Err(e) if e.contains("ABI version") || e.contains("bytes, expected") => problems.push(e),
                 Err(_) => {}
             }
-            let _ = path;
         }
         let builtin: Vec<&str> = self.builtin.iter().map(|l| l.name.as_str()).collect();
         let dirs: Vec<String> = self.search_dirs.iter().map(|d| d.display().to_string()).collect();

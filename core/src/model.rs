@@ -520,11 +520,6 @@ impl Model {
         }
         total
     }
-
-    /// Infinity norm of the free part of `v` scaled for convergence checks.
-    pub fn free_norm(&self, v: &[f64]) -> f64 {
-        v.iter().map(|x| x * x).sum::<f64>().sqrt()
-    }
 }
 
 fn element_error(set: &str, material: &str, cell: usize, failure: ElementFailure) -> CoreError {

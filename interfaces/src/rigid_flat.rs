@@ -387,11 +387,10 @@ impl Contribution for RigidFlat {
                 }
             }
             if let Some(add) = tangent.as_deref_mut() {
-                let r = stiction_core::interface_law::LawResponse { tangent: slope, ..r };
-                if r.tangent != 0.0 {
+                if slope != 0.0 {
                     for (a, &na) in p.nodes.iter().enumerate() {
                         for (b, &nb) in p.nodes.iter().enumerate() {
-                            let s = -p.shape[a] * p.shape[b] * r.tangent * p.weight;
+                            let s = -p.shape[a] * p.shape[b] * slope * p.weight;
                             for i in 0..dpn {
                                 for j in 0..dpn {
                                     if n[i] != 0.0 && n[j] != 0.0 {
