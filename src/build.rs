@@ -205,6 +205,28 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
             ));
         }
     }
+    // Zero-thickness cohesive interfaces: split the mesh along their surfaces first.
+    let mut splits = Vec::new();
+    let mut mesh = mesh;
+    for (i, spec) in c.interfaces.iter().enumerate().filter(|(_, s)| s.kind == "cohesive") {
+        let key = format!("interfaces[{i}]");
+        let side = spec.side.as_deref().ok_or_else(|| {
+            case.error(
+                format!("{key}.side"),
+                "required for type 'cohesive': the volume group that gets the duplicated nodes",
+            )
+        })?;
+        let surfaces = spec.split.clone().unwrap_or_else(|| vec![spec.surface.clone()]);
+        if !surfaces.contains(&spec.surface) {
+            return Err(
+                case.error(format!("{key}.split"), format!("must include the cohesive surface '{}'", spec.surface))
+            );
+        }
+        let split = stiction_interfaces::mesh_split::split_mesh(&mesh, &surfaces, side)
+            .map_err(|e| case.error(&key, e.to_string()))?;
+        let original = std::mem::replace(&mut mesh, split.mesh);
+        splits.push((i, original, split.pairs));
+    }
     let mesh = Arc::new(mesh);
     let mut model = Model::new(mesh.clone(), kin);
 
@@ -449,9 +471,11 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
     let mut layouts = Vec::new();
     for (i, spec) in c.interfaces.iter().enumerate() {
         let key = format!("interfaces[{i}]");
-        if spec.kind != "rigid-flat" {
-            return Err(case
-                .error(format!("{key}.type"), format!("unknown interface type '{}' (known: rigid-flat)", spec.kind)));
+        if spec.kind != "rigid-flat" && spec.kind != "cohesive" {
+            return Err(case.error(
+                format!("{key}.type"),
+                format!("unknown interface type '{}' (known: rigid-flat, cohesive)", spec.kind),
+            ));
         }
         let group = mesh.group(&spec.surface).map_err(|e| case.error(format!("{key}.surface"), e.to_string()))?;
         let face_size = mean_edge_length(&mesh, group)
@@ -473,6 +497,35 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
             (Some(v), _) if v.len() == dpn => [v[0], v[1], if dpn == 3 { v[2] } else { 0.0 }],
             (Some(_), _) => return Err(case.error(format!("{key}.normal"), format!("needs {dpn} components"))),
         };
+        if spec.kind == "cohesive" {
+            let (_, original, pairs) = splits.iter().find(|(j, ..)| *j == i).expect("split above");
+            let side = mesh
+                .group(spec.side.as_deref().unwrap_or_default())
+                .map_err(|e| case.error(format!("{key}.side"), e.to_string()))?;
+            let finder = BoundaryFinder::new(
+                &mesh.nodes,
+                mesh.blocks_of(side).flat_map(|b| b.cells().map(move |c| (b.cell_type, c))),
+            );
+            let nc = mesh.blocks_of(side).next().and_then(|b| b.cell_type.facet()).map(|f| f.n_corners()).unwrap_or(3);
+            let shear = spec.shear_stiffness.unwrap_or(100.0 * modulus / face_size);
+            if !(shear >= 0.0 && shear.is_finite()) {
+                return Err(case.error(format!("{key}.shear_stiffness"), "must be a finite number >= 0"));
+            }
+            let elements = stiction_interfaces::cohesive::CohesiveElements::new(
+                &spec.name,
+                original,
+                &spec.surface,
+                pairs,
+                |b| finder.cell_centroid(&b[..nc]),
+                kin,
+                law,
+                shear,
+                spec.quadrature_order,
+            )
+            .map_err(|e| case.error(&key, e.to_string()))?;
+            model.contributions.push(Box::new(elements));
+            continue;
+        }
         let flat_spec = stiction_interfaces::RigidFlatSpec {
             name: spec.name.clone(),
             surface: spec.surface.clone(),

@@ -37,6 +37,11 @@ impl BoundaryFinder {
         Self { faces }
     }
 
+    /// Centroid of the indexed cell that has this face, if any.
+    pub fn cell_centroid(&self, face_corners: &[usize]) -> Option<[f64; 3]> {
+        self.faces.get(&key(face_corners)).copied()
+    }
+
     /// +1 if the face normal computed from `normal` (at the face) points away from the
     /// adjacent cell, -1 if it points into it; `None` if the face bounds no indexed cell.
     pub fn outward_sign(&self, face_corners: &[usize], face_centroid: [f64; 3], normal: [f64; 3]) -> Option<f64> {

@@ -9,6 +9,8 @@
 //! * [`plugin`]: interface laws behind the C ABI (plugins and built-in laws).
 
 pub mod asperity_layout;
+pub mod cohesive;
+pub mod mesh_split;
 pub mod plugin;
 pub mod rigid_flat;
 pub mod surface_locator;

@@ -173,15 +173,25 @@ pub struct LoadSpec {
 #[serde(deny_unknown_fields)]
 pub struct InterfaceSpec {
     pub name: String,
-    /// "rigid-flat".
+    /// "rigid-flat", or "cohesive" (zero-thickness cohesive elements on an interior surface).
     #[serde(rename = "type")]
     pub kind: String,
     /// Surface group of the body (faces: triangles in 3d, lines in axisymmetric models).
     pub surface: String,
     /// Unit normal from the flat toward the body (default [0, 0, 1] in 3d, [0, 1] axisymmetric).
     pub normal: Option<Vec<f64>>,
-    /// Approach of the flat toward the body: approach * amplitude(t) (positive presses).
+    /// Approach of the flat toward the body: approach * amplitude(t) (positive presses; rigid
+    /// flats only, default 0).
+    #[serde(default)]
     pub approach: f64,
+    /// Cohesive: interior surfaces along which the mesh is split (default: `surface` only; add
+    /// pre-cracked faces here to open them without cohesion).
+    pub split: Option<Vec<String>>,
+    /// Cohesive: the volume group whose cells get the duplicated nodes.
+    pub side: Option<String>,
+    /// Cohesive: elastic stiffness against tangential slip (the law is normal-only; default:
+    /// the law's `penalty` choice, 100 E / h).
+    pub shear_stiffness: Option<f64>,
     /// Amplitude name (default "ramp").
     pub amplitude: Option<String>,
     /// Gap between the flat and the closest point of the undeformed surface at approach 0
