@@ -30,3 +30,35 @@ fn blocks_in_series_with_an_elastic_interface_match_the_closed_form() {
     let (_, fields) = m.contributions[0].point_output().unwrap();
     assert!(fields[0].values.iter().all(|gap| (gap - g).abs() < 1e-12), "openings {:?} vs {g}", &fields[0].values[..4]);
 }
+
+/// The assembled tangent of the cohesive elements against central differences of the residual,
+/// in the softening range of the bilinear law (opening between onset 0.004 and failure 0.01).
+#[test]
+fn cohesive_element_tangent_matches_finite_differences_while_softening() {
+    let path = stiction_tests::workspace_root().join("cases/validation/two-blocks-cohesive.toml");
+    let sets: Vec<String> = [
+        "mesh.parameters.h=1.0",
+        "interfaces.0.parameters={ G_c = 0.001, sigma_max = 0.2, penalty = 50.0, initially_bonded = 1 }",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let case = stiction::case::load(&path, &sets).unwrap();
+    let mut built = stiction::build::build(&case).unwrap();
+    let m = &mut built.model;
+    m.apply_time(0.0);
+    m.assemble(false).unwrap();
+    m.commit();
+    // open the interface by 0.006 (softening) with some slip and a smooth field on top
+    let upper_nodes: std::collections::HashSet<usize> =
+        m.mesh.group_nodes(m.mesh.group("upper").unwrap()).into_iter().collect();
+    for (n, x) in m.mesh.nodes.clone().iter().enumerate() {
+        let jump = if upper_nodes.contains(&n) { [0.0005, -0.0003, 0.006] } else { [0.0; 3] };
+        for c in 0..3 {
+            m.displacement[n * 3 + c] = 1e-3 * (x[0] - 0.3 * x[1] + 0.2 * x[2] * (c as f64 + 1.0)) + jump[c];
+        }
+    }
+    let err = stiction_tests::assembled_tangent_error(m, 1e-8);
+    println!("cohesive elements (softening): tangent vs finite differences {err:.2e}");
+    assert!(err < 1e-5, "{err}");
+}
