@@ -7,6 +7,7 @@
 //! slip meets an elastic shear penalty k_s (the law is normal-only). Forces: on B
 //! f = N (sigma n - k_s s) w, on A the opposite; tangent from d sigma / d g and k_s.
 
+use crate::point_law::evaluate_point;
 use std::collections::HashMap;
 use std::sync::Arc;
 use stiction_core::CoreError;
@@ -42,8 +43,11 @@ pub struct CohesiveElements {
 }
 
 impl CohesiveElements {
-    /// Cohesive elements on the faces of `surface` (of the unsplit mesh `original`), whose nodes
-    /// were duplicated (`pairs`) for the cells of `side_cells_centroid_of` the side B.
+    /// Cohesive elements on the faces of `surface` of the unsplit mesh `original`, whose nodes
+    /// were duplicated (`pairs`: original -> duplicate) for side B; `side_centroid` gives the
+    /// centroid of the side-B cell bounded by a face (its duplicated nodes), to orient the
+    /// normal from A toward B.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         name: &str,
         original: &Mesh,
@@ -120,7 +124,7 @@ impl Contribution for CohesiveElements {
     }
 
     fn coupled_nodes(&self) -> Vec<Vec<usize>> {
-        self.points.iter().step_by(1).map(|p| p.a.iter().chain(&p.b).copied().collect()).collect()
+        self.points.iter().map(|p| p.a.iter().chain(&p.b).copied().collect()).collect()
     }
 
     fn assemble(
@@ -131,7 +135,6 @@ impl Contribution for CohesiveElements {
         mut tangent: Option<&mut dyn FnMut(usize, usize, f64)>,
     ) -> Result<(), CoreError> {
         let dpn = self.dpn;
-        let ns = self.law.n_state();
         let (mut total, mut area, mut count) = (0.0, 0.0, 0.0);
         for (i, p) in self.points.iter().enumerate() {
             let n = p.normal;
@@ -143,18 +146,7 @@ impl Contribution for CohesiveElements {
             }
             let g: f64 = (0..3).map(|c| du[c] * n[c]).sum();
             let slip: [f64; 3] = std::array::from_fn(|c| du[c] - g * n[c]);
-            let r = self
-                .law
-                .evaluate(g, &self.state_committed[i * ns..(i + 1) * ns], &mut self.state_trial[i * ns..(i + 1) * ns])
-                .map_err(|e| CoreError::Invalid(format!("interface '{}', point {}: {}", self.name, i + 1, e.0)))?;
-            if !r.value.is_finite() || !r.tangent.is_finite() {
-                return Err(CoreError::NonFinite(format!(
-                    "traction of law '{}' at point {} of '{}'",
-                    self.law.name(),
-                    i + 1,
-                    self.name
-                )));
-            }
+            let r = evaluate_point(self.law.as_ref(), &self.name, i, g, &self.state_committed, &mut self.state_trial)?;
             self.gap[i] = g;
             self.value[i] = r.value;
             total += r.value * p.weight;

@@ -12,6 +12,7 @@ pub mod asperity_layout;
 pub mod cohesive;
 pub mod mesh_split;
 pub mod plugin;
+pub mod point_law;
 pub mod rigid_flat;
 pub mod surface_locator;
 

@@ -23,6 +23,7 @@
 //! continuous in pseudo-time. Its dissipated energy, sum zeta |k_c| (g - g_c)^2 / dt w, is
 //! accumulated and reported so it can be kept small.
 
+use crate::point_law::evaluate_point;
 use crate::surface_locator::SurfaceLocator;
 use std::sync::Arc;
 use stiction_core::CoreError;
@@ -333,7 +334,6 @@ impl Contribution for RigidFlat {
         mut tangent: Option<&mut dyn FnMut(usize, usize, f64)>,
     ) -> Result<(), CoreError> {
         let dpn = self.dpn;
-        let ns = self.law.n_state();
         let traction_law = self.law.kind() == LawKind::TractionPerArea;
         let level = self.base_level + self.approach(time);
         let n = self.normal;
@@ -349,18 +349,7 @@ impl Contribution for RigidFlat {
                 }
             }
             let g = p.level + un - level;
-            let r = self
-                .law
-                .evaluate(g, &self.state_committed[i * ns..(i + 1) * ns], &mut self.state_trial[i * ns..(i + 1) * ns])
-                .map_err(|e| CoreError::Invalid(format!("interface '{}', point {}: {}", self.name, i + 1, e.0)))?;
-            if !r.value.is_finite() || !r.tangent.is_finite() {
-                return Err(CoreError::NonFinite(format!(
-                    "value of law '{}' at point {} of interface '{}' (gap {g:e})",
-                    self.law.name(),
-                    i + 1,
-                    self.name
-                )));
-            }
+            let r = evaluate_point(self.law.as_ref(), &self.name, i, g, &self.state_committed, &mut self.state_trial)?;
             let point_area = if traction_law { p.weight } else { r.area };
             self.gap[i] = g;
             self.value[i] = r.value;

@@ -21,13 +21,20 @@ pub fn workspace_root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
 }
 
-/// Loads a shipped case (path relative to the workspace root), applies `--set` overrides, runs
-/// it into `target/test-out/<label>` and returns the model in its final state.
-pub fn run_case(relative: &str, sets: &[&str], label: &str) -> (BuiltModel, RunSummary) {
+/// Loads a shipped case (path relative to the workspace root) with `--set` overrides and builds
+/// its model without running it.
+pub fn build_case(relative: &str, sets: &[&str]) -> (case::LoadedCase, BuiltModel) {
     let path = workspace_root().join(relative);
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let loaded = case::load(&path, &sets).unwrap_or_else(|e| panic!("{e}"));
-    let mut built = stiction::build::build(&loaded).unwrap_or_else(|e| panic!("{e}"));
+    let built = stiction::build::build(&loaded).unwrap_or_else(|e| panic!("{e}"));
+    (loaded, built)
+}
+
+/// Loads a shipped case (path relative to the workspace root), applies `--set` overrides, runs
+/// it into `target/test-out/<label>` and returns the model in its final state.
+pub fn run_case(relative: &str, sets: &[&str], label: &str) -> (BuiltModel, RunSummary) {
+    let (loaded, mut built) = build_case(relative, sets);
     let out = workspace_root().join("target").join("test-out").join(label);
     let options = RunOptions { out: Some(out), progress: false };
     let summary = run_model(&loaded, &mut built, &options).unwrap_or_else(|e| panic!("{e}"));

@@ -35,16 +35,13 @@ fn blocks_in_series_with_an_elastic_interface_match_the_closed_form() {
 /// in the softening range of the bilinear law (opening between onset 0.004 and failure 0.01).
 #[test]
 fn cohesive_element_tangent_matches_finite_differences_while_softening() {
-    let path = stiction_tests::workspace_root().join("cases/validation/two-blocks-cohesive.toml");
-    let sets: Vec<String> = [
-        "mesh.parameters.h=1.0",
-        "interfaces.0.parameters={ G_c = 0.001, sigma_max = 0.2, penalty = 50.0, initially_bonded = 1 }",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    let case = stiction::case::load(&path, &sets).unwrap();
-    let mut built = stiction::build::build(&case).unwrap();
+    let (_, mut built) = stiction_tests::build_case(
+        "cases/validation/two-blocks-cohesive.toml",
+        &[
+            "mesh.parameters.h=1.0",
+            "interfaces.0.parameters={ G_c = 0.001, sigma_max = 0.2, penalty = 50.0, initially_bonded = 1 }",
+        ],
+    );
     let m = &mut built.model;
     m.apply_time(0.0);
     m.assemble(false).unwrap();

@@ -109,14 +109,10 @@ fn hertz_3d_quarter_matches_hertz_and_the_axisymmetric_model() {
 /// attraction and repulsion active) against central differences of the residual.
 #[test]
 fn rigid_flat_tangent_matches_finite_differences() {
-    let path = stiction_tests::workspace_root().join("cases/validation/lj-sphere.toml");
-    let sets: Vec<String> =
-        ["mesh.parameters.h_contact=20.0", "mesh.parameters.r_fine=40.0", "mesh.parameters.h_far=400.0"]
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
-    let case = stiction::case::load(&path, &sets).unwrap();
-    let mut built = stiction::build::build(&case).unwrap();
+    let (_, mut built) = stiction_tests::build_case(
+        "cases/validation/lj-sphere.toml",
+        &["mesh.parameters.h_contact=20.0", "mesh.parameters.r_fine=40.0", "mesh.parameters.h_far=400.0"],
+    );
     let m = &mut built.model;
     // the flat at approach 0.6 (gap at the pole 0.507 - 0.6 < 0: repulsion; attraction around it)
     m.apply_time(0.6);

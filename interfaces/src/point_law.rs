@@ -1,0 +1,29 @@
+//! Evaluating a law at one interface point, shared by every interface geometry: the law's
+//! error and any non-finite result become errors naming the interface, the point and the gap.
+
+use stiction_core::CoreError;
+use stiction_core::interface_law::{InterfaceLaw, LawResponse};
+
+/// The law at gap `g` for point `index` (0-based) of `interface`, from its committed state
+/// (`ns` numbers per point) into the trial state.
+pub fn evaluate_point(
+    law: &dyn InterfaceLaw,
+    interface: &str,
+    index: usize,
+    g: f64,
+    committed: &[f64],
+    trial: &mut [f64],
+) -> Result<LawResponse, CoreError> {
+    let ns = law.n_state();
+    let r = law
+        .evaluate(g, &committed[index * ns..(index + 1) * ns], &mut trial[index * ns..(index + 1) * ns])
+        .map_err(|e| CoreError::Invalid(format!("interface '{interface}', point {}: {}", index + 1, e.0)))?;
+    if !r.value.is_finite() || !r.tangent.is_finite() {
+        return Err(CoreError::NonFinite(format!(
+            "value of law '{}' at point {} of interface '{interface}' (gap {g:e})",
+            law.name(),
+            index + 1
+        )));
+    }
+    Ok(r)
+}
