@@ -507,6 +507,15 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
                 mesh.blocks_of(side).flat_map(|b| b.cells().map(move |c| (b.cell_type, c))),
             );
             let nc = mesh.blocks_of(side).next().and_then(|b| b.cell_type.facet()).map(|f| f.n_corners()).unwrap_or(3);
+            if law.gap_dimension() == 3 && spec.shear_stiffness.is_some() {
+                return Err(case.error(
+                    format!("{key}.shear_stiffness"),
+                    format!(
+                        "law '{}' is mixed mode and resists slip itself; shear_stiffness applies to normal-only laws",
+                        law.name()
+                    ),
+                ));
+            }
             let shear = spec.shear_stiffness.unwrap_or(100.0 * modulus / face_size);
             if !(shear >= 0.0 && shear.is_finite()) {
                 return Err(case.error(format!("{key}.shear_stiffness"), "must be a finite number >= 0"));

@@ -11,7 +11,7 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stiction_core::linear_solver::SparseSolver;
-use stiction_core::newton::{Incrementation, NewtonSettings, solve_increment};
+use stiction_core::newton::{Incrementation, NewtonSettings, ReferenceScales, solve_increment};
 use stiction_core::output::vtk::{CellList, PvdSeries, write_points_vtu, write_vtu};
 use stiction_core::output::{HistoryWriter, write_atomically};
 
@@ -309,6 +309,7 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         .flat_map(|a| a.breakpoints_between(0.0, f64::INFINITY).collect::<Vec<_>>())
         .chain(case.case.steps.iter().map(|s| s.end_time))
         .collect();
+    let mut force_average = RunningMean::default();
     'steps: for (si, (step, inc)) in case.case.steps.iter().zip(&incrementations).enumerate() {
         let mut dt = inc.initial;
         let mut since_output = 0;
@@ -329,8 +330,12 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
             if let Some((du, dt_last)) = &last_increment {
                 model.update_free(du, (target - t) / dt_last);
             }
-            match solve_increment(model, &mut solver, target, &newton, u_norm) {
+            let scales = ReferenceScales { displacement: u_norm, force: force_average.mean() };
+            match solve_increment(model, &mut solver, target, &newton, scales) {
                 Ok(report) => {
+                    force_average.add(
+                        norm(&model.internal_force).max(norm(&model.external_force)),
+                    );
                     let du: Vec<f64> =
                         model.free_dofs().iter().map(|&g| model.displacement[g] - committed_free(model, g)).collect();
                     let reversal = breakpoints.iter().any(|&b| (b - target).abs() <= 1e-12 * t_end.max(1.0));
@@ -523,4 +528,25 @@ pub fn run_sweep(path: &Path, sets: &[String], options: &RunOptions) -> Result<V
     let json = serde_json::to_string_pretty(&summaries).expect("summaries serialize");
     write_atomically(&out.join("sweep.json"), json.as_bytes())?;
     Ok(summaries)
+}
+
+/// Mean of the force norms of the converged increments (the Newton reference force).
+#[derive(Default)]
+struct RunningMean {
+    sum: f64,
+    count: usize,
+}
+
+impl RunningMean {
+    fn add(&mut self, value: f64) {
+        self.sum += value;
+        self.count += 1;
+    }
+    fn mean(&self) -> f64 {
+        if self.count == 0 { 0.0 } else { self.sum / self.count as f64 }
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }

@@ -41,6 +41,26 @@ pub struct LawResponse {
     pub area: f64,
 }
 
+/// The result of one mixed-mode evaluation, in the interface point's local frame (normal,
+/// tangential 1, tangential 2): value_i is the force per area on the moving side along axis i
+/// (value_i = -d psi / d gap_i for a law with energy psi), tangent[i][j] = d value_i / d gap_j.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct MixedLawResponse {
+    pub value: [f64; 3],
+    pub tangent: [[f64; 3]; 3],
+    pub in_contact: bool,
+    pub area: f64,
+}
+
+impl From<LawResponse> for MixedLawResponse {
+    /// A normal-only law seen as mixed mode: no tangential value, no coupling.
+    fn from(r: LawResponse) -> Self {
+        let mut tangent = [[0.0; 3]; 3];
+        tangent[0][0] = r.tangent;
+        Self { value: [r.value, 0.0, 0.0], tangent, in_contact: r.in_contact, area: r.area }
+    }
+}
+
 /// Why a law could not be evaluated.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{0}")]
@@ -61,6 +81,21 @@ pub trait InterfaceLaw: Send + Sync {
     /// Names of the state variables, for output.
     fn state_names(&self) -> Vec<String> {
         Vec::new()
+    }
+    /// 1: the law sees the normal gap only; 3: mixed mode (normal and two tangential openings).
+    fn gap_dimension(&self) -> usize {
+        1
+    }
+    /// Mixed-mode value and tangent at the local opening (normal, tangential 1, tangential 2).
+    /// The default is the normal-only law. `evaluate(g)` is the normal part of
+    /// `evaluate_mixed([g, 0, 0])`.
+    fn evaluate_mixed(
+        &self,
+        gap: [f64; 3],
+        state_committed: &[f64],
+        state_trial: &mut [f64],
+    ) -> Result<MixedLawResponse, LawError> {
+        self.evaluate(gap[0], state_committed, state_trial).map(MixedLawResponse::from)
     }
 }
 

@@ -1,13 +1,15 @@
 //! Zero-thickness cohesive elements between the two sides of a split surface.
 //!
 //! At each surface integration point, with face shape functions N_k, the opening is
-//! du = sum_k N_k (u_B,k - u_A,k) (side B holds the duplicated nodes), the normal gap
-//! g = du . n (n the face normal from side A toward side B) and the tangential slip
-//! s = du - g n. The law gives the normal value sigma(g) (positive pushes the sides apart); the
-//! slip meets an elastic shear penalty k_s (the law is normal-only). Forces: on B
-//! f = N (sigma n - k_s s) w, on A the opposite; tangent from d sigma / d g and k_s.
+//! du = sum_k N_k (u_B,k - u_A,k) (side B holds the duplicated nodes), expressed in the local
+//! frame e_0 = n (the face normal from side A toward side B), e_1, e_2 (tangential):
+//! delta_i = du . e_i. A mixed-mode law (gap dimension 3) maps delta to the value vector v
+//! (force per area on side B along e_i) with tangent dv_i/d delta_j; a normal-only law gives
+//! v_0 = sigma(delta_0) and the slip meets an elastic shear penalty k_s: v_1,2 = -k_s delta_1,2.
+//! Forces: on B f = N t w with t = sum_i v_i e_i, on A the opposite; tangent
+//! dt_c / d du_e = sum_ij e_i,c (dv_i / d delta_j) e_j,e.
 
-use crate::point_law::evaluate_point;
+use crate::point_law::{evaluate_point, evaluate_point_mixed};
 use std::collections::HashMap;
 use std::sync::Arc;
 use stiction_core::CoreError;
@@ -23,8 +25,27 @@ struct Point {
     b: Vec<usize>,
     shape: Vec<f64>,
     weight: f64,
-    normal: [f64; 3],
+    /// Local frame: normal (A toward B), tangential 1, tangential 2.
+    frame: [[f64; 3]; 3],
     position: [f64; 3],
+}
+
+/// An orthonormal frame whose first axis is the unit normal `n`: the first tangent is the
+/// coordinate axis least aligned with n, made orthogonal to it (for an axisymmetric meridian
+/// normal (n_r, n_z, 0) that is the hoop axis, whose slip is zero, and the second tangent lies
+/// in the meridian plane).
+fn local_frame(n: [f64; 3]) -> [[f64; 3]; 3] {
+    let axis = (0..3).min_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs())).unwrap_or(0);
+    let mut t1 = [0.0; 3];
+    t1[axis] = 1.0;
+    let d = n[axis];
+    for c in 0..3 {
+        t1[c] -= d * n[c];
+    }
+    let len = (t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]).sqrt();
+    t1 = t1.map(|v| v / len);
+    let t2 = [n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]];
+    [n, t1, t2]
 }
 
 pub struct CohesiveElements {
@@ -35,11 +56,12 @@ pub struct CohesiveElements {
     points: Vec<Point>,
     state_committed: Vec<f64>,
     state_trial: Vec<f64>,
-    gap: Vec<f64>,
-    value: Vec<f64>,
+    /// Opening and value per point in the local frame (trial, then committed for output).
+    opening: Vec<[f64; 3]>,
+    value: Vec<[f64; 3]>,
     trial_summary: [f64; 3],
     committed_summary: [f64; 3],
-    committed_fields: [Vec<f64>; 2],
+    committed_fields: (Vec<[f64; 3]>, Vec<[f64; 3]>),
 }
 
 impl CohesiveElements {
@@ -87,7 +109,7 @@ impl CohesiveElements {
                         b: b.clone(),
                         shape: p.shape,
                         weight: p.area,
-                        normal: p.normal,
+                        frame: local_frame(p.normal),
                         position: p.position,
                     });
                 }
@@ -109,11 +131,11 @@ impl CohesiveElements {
             points,
             state_trial: state.clone(),
             state_committed: state,
-            gap: vec![0.0; n],
-            value: vec![0.0; n],
+            opening: vec![[0.0; 3]; n],
+            value: vec![[0.0; 3]; n],
             trial_summary: [0.0; 3],
             committed_summary: [0.0; 3],
-            committed_fields: [vec![0.0; n], vec![0.0; n]],
+            committed_fields: (vec![[0.0; 3]; n], vec![[0.0; 3]; n]),
         })
     }
 }
@@ -136,26 +158,48 @@ impl Contribution for CohesiveElements {
     ) -> Result<(), CoreError> {
         let dpn = self.dpn;
         let (mut total, mut area, mut count) = (0.0, 0.0, 0.0);
+        let mixed = self.law.gap_dimension() == 3;
         for (i, p) in self.points.iter().enumerate() {
-            let n = p.normal;
+            let e = p.frame;
             let mut du = [0.0; 3];
             for (k, (&na, &nb)) in p.a.iter().zip(&p.b).enumerate() {
                 for c in 0..dpn {
                     du[c] += p.shape[k] * (u[nb * dpn + c] - u[na * dpn + c]);
                 }
             }
-            let g: f64 = (0..3).map(|c| du[c] * n[c]).sum();
-            let slip: [f64; 3] = std::array::from_fn(|c| du[c] - g * n[c]);
-            let r = evaluate_point(self.law.as_ref(), &self.name, i, g, &self.state_committed, &mut self.state_trial)?;
-            self.gap[i] = g;
-            self.value[i] = r.value;
-            total += r.value * p.weight;
-            if r.in_contact {
+            let delta: [f64; 3] = std::array::from_fn(|i| (0..3).map(|c| du[c] * e[i][c]).sum());
+            let (v, dv, in_contact) = if mixed {
+                let r = evaluate_point_mixed(
+                    self.law.as_ref(),
+                    &self.name,
+                    i,
+                    delta,
+                    &self.state_committed,
+                    &mut self.state_trial,
+                )?;
+                (r.value, r.tangent, r.in_contact)
+            } else {
+                let r = evaluate_point(
+                    self.law.as_ref(),
+                    &self.name,
+                    i,
+                    delta[0],
+                    &self.state_committed,
+                    &mut self.state_trial,
+                )?;
+                let ks = self.shear_stiffness;
+                let v = [r.value, -ks * delta[1], -ks * delta[2]];
+                (v, [[r.tangent, 0.0, 0.0], [0.0, -ks, 0.0], [0.0, 0.0, -ks]], r.in_contact)
+            };
+            self.opening[i] = delta;
+            self.value[i] = v;
+            total += v[0] * p.weight;
+            if in_contact {
                 area += p.weight;
                 count += 1.0;
             }
-            // traction on side B
-            let t: [f64; 3] = std::array::from_fn(|c| r.value * n[c] - self.shear_stiffness * slip[c]);
+            // traction on side B in global components
+            let t: [f64; 3] = std::array::from_fn(|c| (0..3).map(|i| v[i] * e[i][c]).sum());
             for (k, (&na, &nb)) in p.a.iter().zip(&p.b).enumerate() {
                 for c in 0..dpn {
                     let f = p.shape[k] * t[c] * p.weight;
@@ -164,23 +208,30 @@ impl Contribution for CohesiveElements {
                 }
             }
             if let Some(add) = tangent.as_deref_mut() {
-                // d t_c / d du_e = dsigma/dg n_c n_e - k_s (delta_ce - n_c n_e)
-                let dt = |c: usize, e: usize| {
-                    let nn = n[c] * n[e];
-                    r.tangent * nn - self.shear_stiffness * (if c == e { 1.0 } else { 0.0 } - nn)
-                };
+                // dt_c / d du_d = sum_ij e_i,c dv_i/d delta_j e_j,d
+                let dt: [[f64; 3]; 3] = std::array::from_fn(|c| {
+                    std::array::from_fn(|d| {
+                        let mut sum = 0.0;
+                        for i in 0..3 {
+                            for j in 0..3 {
+                                sum += e[i][c] * dv[i][j] * e[j][d];
+                            }
+                        }
+                        sum
+                    })
+                });
                 for (k, (&ak, &bk)) in p.a.iter().zip(&p.b).enumerate() {
                     for (l, (&al, &bl)) in p.a.iter().zip(&p.b).enumerate() {
                         let s = p.shape[k] * p.shape[l] * p.weight;
                         for c in 0..dpn {
-                            for e in 0..dpn {
-                                let v = -s * dt(c, e);
+                            for d in 0..dpn {
+                                let v = -s * dt[c][d];
                                 if v != 0.0 {
                                     // force on B (-t) w.r.t. u_B (+) and u_A (-); on A the opposite
-                                    add(bk * dpn + c, bl * dpn + e, v);
-                                    add(bk * dpn + c, al * dpn + e, -v);
-                                    add(ak * dpn + c, bl * dpn + e, -v);
-                                    add(ak * dpn + c, al * dpn + e, v);
+                                    add(bk * dpn + c, bl * dpn + d, v);
+                                    add(bk * dpn + c, al * dpn + d, -v);
+                                    add(ak * dpn + c, bl * dpn + d, -v);
+                                    add(ak * dpn + c, al * dpn + d, v);
                                 }
                             }
                         }
@@ -195,7 +246,7 @@ impl Contribution for CohesiveElements {
     fn commit(&mut self) {
         self.state_committed.copy_from_slice(&self.state_trial);
         self.committed_summary = self.trial_summary;
-        self.committed_fields = [self.gap.clone(), self.value.clone()];
+        self.committed_fields = (self.opening.clone(), self.value.clone());
     }
 
     fn rollback(&mut self) {
@@ -208,12 +259,27 @@ impl Contribution for CohesiveElements {
     }
 
     fn point_output(&self) -> Option<(Vec<[f64; 3]>, Vec<Field>)> {
-        Some((
-            self.points.iter().map(|p| p.position).collect(),
-            vec![
-                Field::new("gap", 1, self.committed_fields[0].clone()),
-                Field::new("traction", 1, self.committed_fields[1].clone()),
-            ],
-        ))
+        let (opening, value) = &self.committed_fields;
+        let slip = |v: &[f64; 3]| (v[1] * v[1] + v[2] * v[2]).sqrt();
+        // opening and traction vectors in global components, for glyphs
+        let global = |x: &[[f64; 3]]| -> Vec<f64> {
+            x.iter()
+                .zip(&self.points)
+                .flat_map(|(v, p)| (0..3).map(move |c| (0..3).map(|i| v[i] * p.frame[i][c]).sum::<f64>()))
+                .collect()
+        };
+        let mut fields = vec![
+            Field::new("gap", 1, opening.iter().map(|o| o[0]).collect()),
+            Field::new("slip", 1, opening.iter().map(slip).collect()),
+            Field::new("traction", 1, value.iter().map(|v| v[0]).collect()),
+            Field::new("shear_traction", 1, value.iter().map(slip).collect()),
+            Field::new("opening_vector", 3, global(opening)),
+            Field::new("traction_vector", 3, global(value)),
+        ];
+        let ns = self.law.n_state();
+        for (k, name) in self.law.state_names().into_iter().enumerate() {
+            fields.push(Field::new(&name, 1, (0..self.points.len()).map(|i| self.state_committed[i * ns + k]).collect()));
+        }
+        Some((self.points.iter().map(|p| p.position).collect(), fields))
     }
 }

@@ -10,8 +10,8 @@ use libloading::Library;
 use std::ffi::{c_char, c_void};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use stiction_core::interface_law::{InterfaceLaw, LawError, LawKind, LawResponse, ParameterSpec};
-use stiction_law_sdk::abi::{self, ABI_VERSION, AbiResponse, LawDescriptor, STATUS_OK, STATUS_PANIC};
+use stiction_core::interface_law::{InterfaceLaw, LawError, LawKind, LawResponse, MixedLawResponse, ParameterSpec};
+use stiction_law_sdk::abi::{self, ABI_VERSION, AbiMixedResponse, AbiResponse, LawDescriptor, STATUS_OK, STATUS_PANIC};
 
 /// The symbol every plugin exports.
 pub const ENTRY_POINT: &[u8] = b"stiction_law_descriptor\0";
@@ -45,6 +45,8 @@ pub struct LawLibrary {
     pub version: String,
     pub kind: LawKind,
     pub n_state: usize,
+    /// 1: normal gap only; 3: mixed mode.
+    pub gap_dimension: usize,
     pub parameters: Vec<ParameterSpec>,
     pub state_names: Vec<String>,
     /// What the law's configuration text is, if it takes one.
@@ -107,6 +109,12 @@ impl LawLibrary {
             1 => LawKind::ForcePerPoint,
             k => return Err(PluginError::Load { path, message: format!("unknown law kind {k}") }),
         };
+        if d.gap_dimension != 1 && d.gap_dimension != 3 {
+            return Err(PluginError::Load {
+                path,
+                message: format!("gap dimension {} (expected 1, normal only, or 3, mixed mode)", d.gap_dimension),
+            });
+        }
         let parameters = (0..d.n_parameters as usize)
             .map(|i| {
                 let p = unsafe { &*d.parameters.add(i) };
@@ -135,6 +143,7 @@ impl LawLibrary {
             version: unsafe { abi::c_str(d.version) }.to_string(),
             kind,
             n_state: d.n_state as usize,
+            gap_dimension: d.gap_dimension as usize,
             parameters,
             state_names,
             config_description: (!d.config_description.is_null())
@@ -250,6 +259,52 @@ impl InterfaceLaw for AbiLaw {
     }
     fn state_names(&self) -> Vec<String> {
         self.library.state_names.clone()
+    }
+    fn gap_dimension(&self) -> usize {
+        self.library.gap_dimension
+    }
+    fn evaluate_mixed(
+        &self,
+        gap: [f64; 3],
+        state_committed: &[f64],
+        state_trial: &mut [f64],
+    ) -> Result<MixedLawResponse, LawError> {
+        let d = unsafe { &*self.library.descriptor };
+        debug_assert_eq!(state_committed.len(), self.library.n_state);
+        let mut response = AbiMixedResponse::default();
+        let mut message = [0 as c_char; 512];
+        let status = unsafe {
+            (d.evaluate_mixed)(
+                self.instance,
+                gap.as_ptr(),
+                state_committed.as_ptr(),
+                state_trial.as_mut_ptr(),
+                &mut response,
+                message.as_mut_ptr(),
+                message.len(),
+            )
+        };
+        let at = format!("opening ({:e}, {:e}, {:e})", gap[0], gap[1], gap[2]);
+        if status != STATUS_OK {
+            let text = unsafe { abi::c_str(message.as_ptr()) }.to_string();
+            let what = if status == STATUS_PANIC { "panicked" } else { "failed" };
+            return Err(LawError(format!("law '{}' {what} at {at}: {text}", self.library.name)));
+        }
+        if response.value.iter().chain(&response.tangent).any(|v| !v.is_finite()) || !response.area.is_finite() {
+            return Err(LawError(format!(
+                "law '{}' returned a non-finite result at {at} (value {:?})",
+                self.library.name, response.value
+            )));
+        }
+        if state_trial.iter().any(|s| !s.is_finite()) {
+            return Err(LawError(format!("law '{}' wrote a non-finite state at {at}", self.library.name)));
+        }
+        Ok(MixedLawResponse {
+            value: response.value,
+            tangent: std::array::from_fn(|i| std::array::from_fn(|j| response.tangent[3 * i + j])),
+            in_contact: response.in_contact != 0,
+            area: response.area,
+        })
     }
 }
 

@@ -2,7 +2,7 @@
 //! error and any non-finite result become errors naming the interface, the point and the gap.
 
 use stiction_core::CoreError;
-use stiction_core::interface_law::{InterfaceLaw, LawResponse};
+use stiction_core::interface_law::{InterfaceLaw, LawResponse, MixedLawResponse};
 
 /// The law at gap `g` for point `index` (0-based) of `interface`, from its committed state
 /// (`ns` numbers per point) into the trial state.
@@ -21,6 +21,30 @@ pub fn evaluate_point(
     if !r.value.is_finite() || !r.tangent.is_finite() {
         return Err(CoreError::NonFinite(format!(
             "value of law '{}' at point {} of interface '{interface}' (gap {g:e})",
+            law.name(),
+            index + 1
+        )));
+    }
+    Ok(r)
+}
+
+/// The mixed-mode law at the local opening `gap` (normal, tangential 1, tangential 2) for point
+/// `index` of `interface`; errors as in [`evaluate_point`].
+pub fn evaluate_point_mixed(
+    law: &dyn InterfaceLaw,
+    interface: &str,
+    index: usize,
+    gap: [f64; 3],
+    committed: &[f64],
+    trial: &mut [f64],
+) -> Result<MixedLawResponse, CoreError> {
+    let ns = law.n_state();
+    let r = law
+        .evaluate_mixed(gap, &committed[index * ns..(index + 1) * ns], &mut trial[index * ns..(index + 1) * ns])
+        .map_err(|e| CoreError::Invalid(format!("interface '{interface}', point {}: {}", index + 1, e.0)))?;
+    if r.value.iter().chain(r.tangent.iter().flatten()).any(|v| !v.is_finite()) {
+        return Err(CoreError::NonFinite(format!(
+            "value of law '{}' at point {} of interface '{interface}' (opening {gap:?})",
             law.name(),
             index + 1
         )));

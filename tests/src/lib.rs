@@ -12,7 +12,7 @@ use stiction_core::element::Kinematics;
 use stiction_core::linear_solver::SparseSolver;
 use stiction_core::mesh::Mesh;
 use stiction_core::model::{Model, Prescribed};
-use stiction_core::newton::{IncrementReport, NewtonSettings, solve_increment};
+use stiction_core::newton::{IncrementReport, NewtonSettings, ReferenceScales, solve_increment};
 use stiction_core::quadrature::QuadratureRule;
 use stiction_elements::shape;
 
@@ -74,7 +74,7 @@ pub fn solve_at_full_load(model: &mut Model) -> IncrementReport {
     model.finalize().unwrap();
     let mut solver = SparseSolver::new(model.pattern()).unwrap();
     let settings = NewtonSettings { tol_residual: 1e-10, ..NewtonSettings::default() };
-    let report = solve_increment(model, &mut solver, 1.0, &settings, 0.0).unwrap_or_else(|e| panic!("{e}"));
+    let report = solve_increment(model, &mut solver, 1.0, &settings, ReferenceScales::default()).unwrap_or_else(|e| panic!("{e}"));
     model.commit();
     report
 }

@@ -32,7 +32,8 @@ fn blocks_in_series_with_an_elastic_interface_match_the_closed_form() {
 }
 
 /// The assembled tangent of the cohesive elements against central differences of the residual,
-/// in the softening range of the bilinear law (opening between onset 0.004 and failure 0.01).
+/// in the softening range of the mixed-mode bilinear law (normal opening 0.006 between onset
+/// 0.004 and failure 0.01, plus slip: the damage couples normal and shear).
 #[test]
 fn cohesive_element_tangent_matches_finite_differences_while_softening() {
     let (_, mut built) = stiction_tests::build_case(
@@ -57,5 +58,92 @@ fn cohesive_element_tangent_matches_finite_differences_while_softening() {
     }
     let err = stiction_tests::assembled_tangent_error(m, 1e-8);
     println!("cohesive elements (softening): tangent vs finite differences {err:.2e}");
+    assert!(err < 1e-5, "{err}");
+}
+
+/// Work of the top face over a run: sum over increments of the trapezoid of the reaction times
+/// the prescribed displacement increment (top displacement = (u_x, 0, u_z) * t).
+fn work_of_top(history: &std::path::Path, u: [f64; 2]) -> f64 {
+    let text = std::fs::read_to_string(history).unwrap();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}"));
+    let (t, rx, rz) = (col("time"), col("reaction_top_x"), col("reaction_top_z"));
+    let rows: Vec<Vec<f64>> =
+        text.lines().skip(1).map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    rows.windows(2)
+        .map(|w| {
+            let dt = w[1][t] - w[0][t];
+            0.5 * ((w[0][rx] + w[1][rx]) * u[0] + (w[0][rz] + w[1][rz]) * u[1]) * dt
+        })
+        .sum()
+}
+
+/// Mixed-mode separation of two stiff blocks (cases/validation/mixed-mode-blocks.toml): the
+/// work of the top face over the whole separation equals the unit interface area times the
+/// Benzeggagh-Kenane energy G_Ic + (G_IIc - G_Ic) B^eta for the applied mode mixity
+/// B = sin^2(theta): pure mode I (0.5), 45 degrees (0.75) and pure mode II (1.5). The blocks'
+/// compliance (1e-3 of the interface's) makes the opening slightly non-uniform; tolerance 0.5%.
+#[test]
+fn mixed_mode_separation_dissipates_the_benzeggagh_kenane_energy() {
+    let (g1, g2, eta) = (0.5f64, 1.5f64, 2.0f64);
+    for (theta_deg, ux, uz) in [(0.0f64, 0.0, 0.7), (45.0, 0.5, 0.5), (90.0, 1.1, 0.0)] {
+        let b = theta_deg.to_radians().sin().powi(2);
+        let expected = g1 + (g2 - g1) * b.powf(eta);
+        let label = format!("mixed-mode-{theta_deg}");
+        let x = format!("boundary.1.value={ux}");
+        let z = format!("boundary.3.value={uz}");
+        let (_, summary) = run_case("cases/validation/mixed-mode-blocks.toml", &[&x, &z], &label);
+        assert_eq!(summary.status, "completed");
+        let w = work_of_top(&summary.output_directory.join("history.csv"), [ux, uz]);
+        println!("theta {theta_deg}: work {w:.6}, Benzeggagh-Kenane {expected:.6} ({:+.3}%)", 100.0 * (w / expected - 1.0));
+        assert!((w / expected - 1.0).abs() < 5e-3, "theta {theta_deg}: work {w} vs {expected}");
+    }
+}
+
+/// Axisymmetric cohesive elements (cases/validation/two-discs-axisym-cohesive.toml): two
+/// cylinders in series in uniaxial stress, g = E U / (2 L k + E), sigma = k g; the top reaction
+/// is sigma times the face area pi R^2 (reactions are totals over the circumference).
+#[test]
+fn axisymmetric_cylinders_with_an_elastic_interface_match_the_closed_form() {
+    let (built, summary) =
+        run_case("cases/validation/two-discs-axisym-cohesive.toml", &[], "two-discs-axisym-cohesive");
+    assert_eq!(summary.status, "completed");
+    let (e, u, l, k) = (100.0f64, 0.01f64, 1.0f64, 50.0f64);
+    let g = e * u / (2.0 * l * k + e);
+    let sigma = k * g;
+    let m = &built.model;
+    let top = m.mesh.group_nodes(m.mesh.group("top").unwrap());
+    let r = m.reaction(&top);
+    let expected = sigma * std::f64::consts::PI;
+    println!("axisymmetric: top reaction {:.12}, closed form {expected:.12}", r[1]);
+    assert!((r[1] - expected).abs() < 1e-9, "{} vs {expected}", r[1]);
+    let (_, fields) = m.contributions[0].point_output().unwrap();
+    let gap = fields.iter().find(|f| f.name == "gap").unwrap();
+    let slip = fields.iter().find(|f| f.name == "slip").unwrap();
+    assert!(gap.values.iter().all(|v| (v - g).abs() < 1e-12), "openings {:?} vs {g}", &gap.values[..4]);
+    assert!(slip.values.iter().all(|v| v.abs() < 1e-12), "no slip expected");
+}
+
+/// The assembled tangent of axisymmetric cohesive elements vs central differences, softening
+/// under mixed opening (normal 0.006, radial slip 0.002).
+#[test]
+fn axisymmetric_cohesive_tangent_matches_finite_differences_while_softening() {
+    let (_, mut built) = stiction_tests::build_case(
+        "cases/validation/two-discs-axisym-cohesive.toml",
+        &["mesh.parameters.h=1.0", "interfaces.0.parameters={ G_c = 0.001, sigma_max = 0.2, penalty = 50.0, initially_bonded = 1 }"],
+    );
+    let m = &mut built.model;
+    m.apply_time(0.0);
+    m.assemble(false).unwrap();
+    m.commit();
+    let upper: std::collections::HashSet<usize> = m.mesh.group_nodes(m.mesh.group("upper").unwrap()).into_iter().collect();
+    for (n, x) in m.mesh.nodes.clone().iter().enumerate() {
+        let jump = if upper.contains(&n) { [0.002 * x[0], 0.006] } else { [0.0; 2] };
+        for c in 0..2 {
+            m.displacement[n * 2 + c] = 1e-3 * (x[0] + 0.4 * x[1] * (c as f64 + 1.0)) + jump[c];
+        }
+    }
+    let err = stiction_tests::assembled_tangent_error(m, 1e-8);
+    println!("axisymmetric cohesive elements (softening): tangent vs finite differences {err:.2e}");
     assert!(err < 1e-5, "{err}");
 }

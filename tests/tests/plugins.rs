@@ -109,3 +109,86 @@ fn a_missing_law_says_where_it_looked_and_bad_parameters_name_the_key() {
     let e = make_law(&registry, "target/nothing/libx.so", &workspace_root(), &[], None, &ctx).err().unwrap();
     assert!(e.contains("libx.so"), "{e}");
 }
+
+/// The mixed-mode cohesive-zone law through the C ABI (the plugin shared library): bit for bit
+/// the statically linked law along a mixed opening path, and conformant.
+#[test]
+fn the_mixed_mode_cohesive_plugin_matches_the_built_in_law_and_passes_conformance() {
+    cargo_build(&["-p", "stiction-plugin-cohesive-zone"]);
+    let path = build_dir().join("debug").join("libstiction_plugin_cohesive_zone.so");
+    let registry = LawRegistry::new(&[]);
+    let ctx = LawContext { modulus: 1.0, face_size: 1.0 };
+    let params: Vec<(String, f64)> =
+        [("G_c", 0.8), ("sigma_max", 6.0), ("penalty", 2e4), ("G_IIc", 2.4), ("tau_max", 9.0), ("initially_bonded", 1.0)]
+            .iter()
+            .map(|(k, v)| (k.to_string(), *v))
+            .collect();
+    let dynamic = make_law(&registry, path.to_str().unwrap(), &workspace_root(), &params, None, &ctx).unwrap();
+    let builtin = make_law(&registry, "cohesive-zone", &workspace_root(), &params, None, &ctx).unwrap();
+    assert_eq!((dynamic.gap_dimension(), builtin.gap_dimension()), (3, 3));
+    let (mut sa, mut sb) = (vec![0.0; 3], vec![0.0; 3]);
+    dynamic.initialize_state(&mut sa);
+    builtin.initialize_state(&mut sb);
+    let mut grew = false;
+    for k in 0..200 {
+        let s = k as f64 / 200.0;
+        let delta = [6e-4 * (8.0 * s).sin(), 8e-4 * s, -3e-4 * s * s];
+        let (mut ta, mut tb) = (vec![0.0; 3], vec![0.0; 3]);
+        let a = dynamic.evaluate_mixed(delta, &sa, &mut ta).unwrap();
+        let b = builtin.evaluate_mixed(delta, &sb, &mut tb).unwrap();
+        assert_eq!((a, &ta), (b, &tb), "opening {delta:?}");
+        grew |= tb[2] > sb[2];
+        (sa, sb) = (ta, tb);
+    }
+    assert!(grew, "the path damages the interface");
+    for r in stiction::plugin_check::check(&dynamic, 2e-4) {
+        println!("{}: {} ({})", if r.passed { "PASS" } else { "FAIL" }, r.name, r.detail);
+        assert!(r.passed, "{}: {}", r.name, r.detail);
+    }
+}
+
+/// The conformance check catches a mixed-mode law whose shear tangent is 10% off, and one whose
+/// normal-only evaluation disagrees with its mixed evaluation.
+#[test]
+fn plugin_check_fails_a_wrong_mixed_mode_tangent() {
+    use stiction_law_sdk::abi::DescriptorHolder;
+    use stiction_law_sdk::{Law, LawKind, MixedResponse, Parameter, Response};
+    /// A quadratic interface energy psi = k/2 (g_n^2 + g_s^2) with a wrong shear tangent; its
+    /// normal-only evaluation doubles the stiffness when `inconsistent` is set.
+    struct WrongShear {
+        inconsistent: bool,
+    }
+    impl Law for WrongShear {
+        const NAME: &'static std::ffi::CStr = c"wrong-shear";
+        const VERSION: &'static std::ffi::CStr = c"0.0.1";
+        const KIND: LawKind = LawKind::TractionPerArea;
+        const N_STATE: usize = 0;
+        const GAP_DIMENSION: usize = 3;
+        fn parameters() -> Vec<Parameter> {
+            vec![Parameter::optional(c"inconsistent", c"-", c"1: normal-only evaluation disagrees", 0.0, 0.0, 1.0)]
+        }
+        fn create(p: &[f64], _: &str) -> Result<Self, String> {
+            Ok(Self { inconsistent: p[0] == 1.0 })
+        }
+        fn evaluate(&self, g: f64, _: &[f64], _: &mut [f64]) -> Result<Response, String> {
+            let k = if self.inconsistent { 2.0 } else { 1.0 };
+            Ok(Response { value: -k * g, tangent: -k, in_contact: g < 0.0, area: 0.0 })
+        }
+        fn evaluate_mixed(&self, d: [f64; 3], _: &[f64], _: &mut [f64]) -> Result<MixedResponse, String> {
+            let mut tangent = [[0.0; 3]; 3];
+            tangent[0][0] = -1.0;
+            tangent[1][1] = -1.1;
+            tangent[2][2] = -1.0;
+            Ok(MixedResponse { value: d.map(|x| -x), tangent, in_contact: d[0] < 0.0, area: 0.0 })
+        }
+    }
+    static HOLDER: std::sync::OnceLock<DescriptorHolder> = std::sync::OnceLock::new();
+    let holder = HOLDER.get_or_init(DescriptorHolder::new::<WrongShear>);
+    let lib = Arc::new(unsafe { LawLibrary::from_static(holder.descriptor()) }.unwrap());
+    for (flag, failing) in [(0.0, "mixed-mode tangent"), (1.0, "normal-only evaluation")] {
+        let law: Arc<dyn InterfaceLaw> = Arc::new(lib.instantiate(&[flag], "").unwrap());
+        let results = stiction::plugin_check::check(&law, 1.0);
+        let r = results.iter().find(|r| r.name.starts_with(failing)).unwrap();
+        assert!(!r.passed, "{failing} should fail: {}", r.detail);
+    }
+}

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use stiction_core::element::Kinematics;
 use stiction_core::linear_solver::SparseSolver;
 use stiction_core::model::Model;
-use stiction_core::newton::{NewtonSettings, solve_increment};
+use stiction_core::newton::{NewtonSettings, ReferenceScales, solve_increment};
 use stiction_materials::J2Plasticity;
 use stiction_tests::*;
 
@@ -80,7 +80,7 @@ fn newton_converges_quadratically_on_a_plastic_problem() {
     let settings = NewtonSettings { tol_residual: 1e-12, tol_displacement: 1e-12, ..NewtonSettings::default() };
     let mut sequences = Vec::new();
     for t in [0.25, 0.5, 0.75, 1.0] {
-        let report = solve_increment(&mut model, &mut solver, t, &settings, 0.0).unwrap();
+        let report = solve_increment(&mut model, &mut solver, t, &settings, ReferenceScales::default()).unwrap();
         model.commit();
         sequences.push(report.residual_norms.clone());
     }

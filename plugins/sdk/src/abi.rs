@@ -6,12 +6,13 @@
 //! error (message written to the caller's buffer) and 2 when the law panicked (the panic is
 //! caught here, never unwinds into the host).
 
-use crate::{Law, Response};
+use crate::{Law, MixedResponse, Response};
 use std::ffi::{CStr, c_char, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 /// Version of this ABI. Bump on any change of the structs or function signatures below.
-pub const ABI_VERSION: u32 = 1;
+/// Version 2 added mixed-mode laws: `gap_dimension` and `evaluate_mixed`.
+pub const ABI_VERSION: u32 = 2;
 
 pub const STATUS_OK: i32 = 0;
 pub const STATUS_ERROR: i32 = 1;
@@ -41,6 +42,17 @@ pub struct AbiResponse {
     pub area: f64,
 }
 
+/// The result of one mixed-mode evaluation as seen through the ABI (local frame: normal,
+/// tangential 1, tangential 2; `tangent` row-major, tangent[3 i + j] = d value_i / d gap_j).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default)]
+pub struct AbiMixedResponse {
+    pub value: [f64; 3],
+    pub tangent: [f64; 9],
+    pub in_contact: u32,
+    pub area: f64,
+}
+
 pub type CreateFn = unsafe extern "C" fn(
     parameters: *const f64,
     n_parameters: u32,
@@ -61,6 +73,16 @@ pub type EvaluateFn = unsafe extern "C" fn(
     message_len: usize,
 ) -> i32;
 
+pub type EvaluateMixedFn = unsafe extern "C" fn(
+    instance: *const c_void,
+    gap: *const f64,
+    state_committed: *const f64,
+    state_trial: *mut f64,
+    response: *mut AbiMixedResponse,
+    message: *mut c_char,
+    message_len: usize,
+) -> i32;
+
 /// Everything the host needs to use a law.
 #[repr(C)]
 #[derive(Debug)]
@@ -74,6 +96,8 @@ pub struct LawDescriptor {
     /// 0: traction per area, 1: force per point.
     pub kind: u32,
     pub n_state: u32,
+    /// 1: normal gap only; 3: mixed mode (`evaluate_mixed` gives a traction vector).
+    pub gap_dimension: u32,
     pub n_parameters: u32,
     pub parameters: *const AbiParameter,
     /// `n_state` names (may be null when the law gives none).
@@ -84,6 +108,9 @@ pub struct LawDescriptor {
     pub destroy: DestroyFn,
     pub initialize_state: InitializeStateFn,
     pub evaluate: EvaluateFn,
+    /// Gap: 3 values (normal, tangential 1, tangential 2). Normal-only laws answer with the
+    /// normal law and zero tangential value.
+    pub evaluate_mixed: EvaluateMixedFn,
 }
 
 /// Owns a descriptor and the arrays it points into (for the `export_law!` macro).
@@ -120,6 +147,7 @@ impl DescriptorHolder {
             version: L::VERSION.as_ptr(),
             kind: L::KIND as u32,
             n_state: L::N_STATE as u32,
+            gap_dimension: L::GAP_DIMENSION as u32,
             n_parameters: parameters.len() as u32,
             parameters: parameters.as_ptr(),
             state_names: if state_names.len() == L::N_STATE && !state_names.is_empty() {
@@ -132,6 +160,7 @@ impl DescriptorHolder {
             destroy: destroy::<L>,
             initialize_state: initialize_state::<L>,
             evaluate: evaluate::<L>,
+            evaluate_mixed: evaluate_mixed::<L>,
         };
         Self { descriptor, _parameters: parameters, _state_names: state_names }
     }
@@ -219,17 +248,18 @@ unsafe extern "C" fn initialize_state<L: Law>(instance: *const c_void, state: *m
     if r.is_ok() { STATUS_OK } else { STATUS_PANIC }
 }
 
-unsafe extern "C" fn evaluate<L: Law>(
+/// Runs `f` on the instance and the state slices behind the C pointers, catching panics.
+///
+/// # Safety
+/// `instance` is a live instance of `L`; each state pointer addresses `L::N_STATE` values.
+unsafe fn with_states<L: Law, R>(
     instance: *const c_void,
-    gap: f64,
     state_committed: *const f64,
     state_trial: *mut f64,
-    response: *mut AbiResponse,
-    message: *mut c_char,
-    message_len: usize,
-) -> i32 {
-    let result = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: a live instance, N_STATE values in each state buffer.
+    f: impl FnOnce(&L, &[f64], &mut [f64]) -> Result<R, String>,
+) -> std::thread::Result<Result<R, String>> {
+    catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: guaranteed by the caller.
         let law = unsafe { &*(instance as *const L) };
         let (old, new) = if L::N_STATE == 0 {
             (&[][..], &mut [][..])
@@ -241,12 +271,20 @@ unsafe extern "C" fn evaluate<L: Law>(
                 )
             }
         };
-        law.evaluate(gap, old, new)
-    }));
+        f(law, old, new)
+    }))
+}
+
+/// Writes an evaluation's outcome: the response through `write`, or the error or panic text.
+fn finish<R>(
+    result: std::thread::Result<Result<R, String>>,
+    write: impl FnOnce(R),
+    message: *mut c_char,
+    message_len: usize,
+) -> i32 {
     match result {
-        Ok(Ok(Response { value, tangent, in_contact, area })) => {
-            // SAFETY: `response` is a valid out-pointer.
-            unsafe { *response = AbiResponse { value, tangent, in_contact: in_contact as u32, area } };
+        Ok(Ok(r)) => {
+            write(r);
             STATUS_OK
         }
         Ok(Err(e)) => {
@@ -258,6 +296,45 @@ unsafe extern "C" fn evaluate<L: Law>(
             STATUS_PANIC
         }
     }
+}
+
+unsafe extern "C" fn evaluate<L: Law>(
+    instance: *const c_void,
+    gap: f64,
+    state_committed: *const f64,
+    state_trial: *mut f64,
+    response: *mut AbiResponse,
+    message: *mut c_char,
+    message_len: usize,
+) -> i32 {
+    // SAFETY: the host passes a live instance and N_STATE values in each state buffer.
+    let result = unsafe { with_states::<L, _>(instance, state_committed, state_trial, |law, old, new| law.evaluate(gap, old, new)) };
+    let write = |Response { value, tangent, in_contact, area }: Response| {
+        // SAFETY: `response` is a valid out-pointer.
+        unsafe { *response = AbiResponse { value, tangent, in_contact: in_contact as u32, area } };
+    };
+    finish(result, write, message, message_len)
+}
+
+unsafe extern "C" fn evaluate_mixed<L: Law>(
+    instance: *const c_void,
+    gap: *const f64,
+    state_committed: *const f64,
+    state_trial: *mut f64,
+    response: *mut AbiMixedResponse,
+    message: *mut c_char,
+    message_len: usize,
+) -> i32 {
+    // SAFETY: the host passes 3 gap values, a live instance and N_STATE values per state buffer.
+    let gap = unsafe { [*gap, *gap.add(1), *gap.add(2)] };
+    let result =
+        unsafe { with_states::<L, _>(instance, state_committed, state_trial, |law, old, new| law.evaluate_mixed(gap, old, new)) };
+    let write = |MixedResponse { value, tangent, in_contact, area }: MixedResponse| {
+        let flat = std::array::from_fn(|k| tangent[k / 3][k % 3]);
+        // SAFETY: `response` is a valid out-pointer.
+        unsafe { *response = AbiMixedResponse { value, tangent: flat, in_contact: in_contact as u32, area } };
+    };
+    finish(result, write, message, message_len)
 }
 
 /// Reads a C string from a descriptor field ("" when null).

@@ -24,6 +24,14 @@
 //! (compressive), negative when it pulls them together (adhesive); `tangent` = d value / d gap.
 //! `evaluate` must not mutate the instance (it is called from several threads) and writes the
 //! whole trial state from the committed one.
+//!
+//! Mixed-mode laws (`GAP_DIMENSION = 3`) also implement [`Law::evaluate_mixed`]: the gap is the
+//! opening in a local frame (normal, tangential 1, tangential 2) and the value is the force
+//! per area on the moving side along those directions, value_i = -d psi / d gap_i for a law
+//! with an energy psi (so the normal component keeps the sign convention above, and a shear
+//! value opposes the slip), with the 3 x 3 tangent d value_i / d gap_j. `evaluate(g)` must equal
+//! the normal part of `evaluate_mixed([g, 0, 0])`: interfaces that measure only a normal gap
+//! (a frictionless rigid flat) call `evaluate`. Normal-only laws keep the defaults.
 
 pub mod abi;
 
@@ -48,6 +56,26 @@ pub struct Response {
     pub in_contact: bool,
     /// Contact area of the point (force-per-point laws).
     pub area: f64,
+}
+
+/// One mixed-mode evaluation's result (local frame: normal, tangential 1, tangential 2).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct MixedResponse {
+    /// Force per area on the moving side along the frame (positive normal pushes apart).
+    pub value: [f64; 3],
+    /// tangent[i][j] = d value_i / d gap_j.
+    pub tangent: [[f64; 3]; 3],
+    pub in_contact: bool,
+    pub area: f64,
+}
+
+impl MixedResponse {
+    /// A normal-only response: no tangential value, no coupling.
+    pub fn normal_only(r: Response) -> Self {
+        let mut tangent = [[0.0; 3]; 3];
+        tangent[0][0] = r.tangent;
+        Self { value: [r.value, 0.0, 0.0], tangent, in_contact: r.in_contact, area: r.area }
+    }
 }
 
 /// A parameter the law accepts; the host validates case files against these.
@@ -90,6 +118,8 @@ pub trait Law: Sized + Send + Sync {
     const KIND: LawKind;
     /// State variables per point.
     const N_STATE: usize;
+    /// 1: normal gap only; 3: mixed mode (normal and two tangential components).
+    const GAP_DIMENSION: usize = 1;
     fn parameters() -> Vec<Parameter>;
     /// What the law's configuration text is (e.g. "calibration file (TOML)"), or `None` when
     /// the law takes no configuration text.
@@ -106,6 +136,17 @@ pub trait Law: Sized + Send + Sync {
     }
     /// Value and tangent at `gap` from the committed state; writes the whole trial state.
     fn evaluate(&self, gap: f64, state_committed: &[f64], state_trial: &mut [f64]) -> Result<Response, String>;
+    /// Mixed-mode value and tangent at the local opening `gap` = (normal, tangential 1,
+    /// tangential 2); laws with `GAP_DIMENSION = 3` override this. The default is the
+    /// normal-only law: value (evaluate(gap[0]), 0, 0).
+    fn evaluate_mixed(
+        &self,
+        gap: [f64; 3],
+        state_committed: &[f64],
+        state_trial: &mut [f64],
+    ) -> Result<MixedResponse, String> {
+        self.evaluate(gap[0], state_committed, state_trial).map(MixedResponse::normal_only)
+    }
     /// Names of the state variables (for output), `N_STATE` of them.
     fn state_names() -> Vec<&'static CStr> {
         Vec::new()
