@@ -243,8 +243,9 @@ fn check_mixed(law: &Arc<dyn InterfaceLaw>, scale: f64) -> Vec<CheckResult> {
         let rotated = [delta[0], -delta[2], delta[1]];
         if let Ok(q) = law.evaluate_mixed(rotated, &committed, &mut b) {
             let expected = [r.value[0], -r.value[2], r.value[1]];
-            if (0..3).any(|k| (q.value[k] - expected[k]).abs() > 1e-9 * r.value.iter().fold(1e-300f64, |m, v| m.max(v.abs())))
-            {
+            if (0..3).any(|k| {
+                (q.value[k] - expected[k]).abs() > 1e-9 * r.value.iter().fold(1e-300f64, |m, v| m.max(v.abs()))
+            }) {
                 isotropic = false;
             }
         }
@@ -256,7 +257,11 @@ fn check_mixed(law: &Arc<dyn InterfaceLaw>, scale: f64) -> Vec<CheckResult> {
             passed: failures.is_empty() && checked > 0,
             detail: format!(
                 "{checked} entries checked, {skipped} near kinks skipped, max error {worst:.2e} of the largest tangent entry{}",
-                if failures.is_empty() { String::new() } else { format!("; {}", failures.iter().take(3).cloned().collect::<Vec<_>>().join("; ")) }
+                if failures.is_empty() {
+                    String::new()
+                } else {
+                    format!("; {}", failures.iter().take(3).cloned().collect::<Vec<_>>().join("; "))
+                }
             ),
         },
         CheckResult {

@@ -10,6 +10,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use stiction_core::arc_length::{PreviousIncrement, solve_arc_length_increment};
 use stiction_core::linear_solver::SparseSolver;
 use stiction_core::newton::{Incrementation, NewtonSettings, ReferenceScales, solve_increment};
 use stiction_core::output::vtk::{CellList, PvdSeries, write_points_vtu, write_vtu};
@@ -33,6 +34,10 @@ pub struct RunSummary {
     pub final_time: f64,
     pub increments: usize,
     pub cut_increments: usize,
+    /// Increments solved by arc-length continuation, and the limit points (turns of the load
+    /// parameter) they passed.
+    pub arc_length_increments: usize,
+    pub limit_points: usize,
     pub newton_iterations: usize,
     pub n_nodes: usize,
     pub n_cells: usize,
@@ -193,6 +198,8 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         final_time: 0.0,
         increments: 0,
         cut_increments: 0,
+        arc_length_increments: 0,
+        limit_points: 0,
         newton_iterations: 0,
         n_nodes: model.mesh.nodes.len(),
         n_cells: model.sets.iter().map(|s| s.n_cells()).sum(),
@@ -310,36 +317,129 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         .chain(case.case.steps.iter().map(|s| s.end_time))
         .collect();
     let mut force_average = RunningMean::default();
+    let arc_length_enabled = case.case.solver.continuation == crate::case::ContinuationSpec::ArcLength;
+    if arc_length_enabled && case.case.interfaces.iter().any(|i| i.viscosity > 0.0) {
+        return Err(case.error(
+            "solver.continuation",
+            "arc-length continuation and a viscous regularisation (interfaces[].viscosity) exclude each other: the viscous term needs time to move forward",
+        ));
+    }
+    // The last converged increment (free dofs, time), kept through cuts to start arc length.
+    let mut last_converged: Option<PreviousIncrement> = None;
+    let mut crossing: Option<ArcCrossing> = None;
+    let mut first_failed_target: Option<f64> = None;
+    // set when arc length had to hand back to load control; cleared by the next commit
+    let mut arc_blocked = false;
+    let mut step_start = 0.0;
     'steps: for (si, (step, inc)) in case.case.steps.iter().zip(&incrementations).enumerate() {
         let mut dt = inc.initial;
         let mut since_output = 0;
         let step_name = step.name.clone().unwrap_or_else(|| format!("step {}", si + 1));
         while t < step.end_time - 1e-12 * t_end {
-            let mut target = (t + dt).min(step.end_time);
-            // land on amplitude breakpoints so load reversals are exact
-            for &b in &breakpoints {
-                if b > t + 1e-12 * t_end && b < target {
-                    target = b;
-                }
-            }
-            if step.end_time - target < 1e-3 * dt {
-                target = step.end_time;
-            }
             let u_norm = model.displacement.iter().map(|x| x * x).sum::<f64>().sqrt();
-            // Predictor: extrapolate the last converged increment (not across a reversal).
-            if let Some((du, dt_last)) = &last_increment {
-                model.update_free(du, (target - t) / dt_last);
-            }
             let scales = ReferenceScales { displacement: u_norm, force: force_average.mean() };
-            match solve_increment(model, &mut solver, target, &newton, scales) {
-                Ok(report) => {
-                    force_average.add(
-                        norm(&model.internal_force).max(norm(&model.external_force)),
-                    );
+            let attempt = if let Some(arc) = &crossing {
+                match solve_arc_length_increment(
+                    model,
+                    &mut solver,
+                    t,
+                    arc.ds,
+                    &arc.previous,
+                    arc.time_weight,
+                    1e-6 * t_end,
+                    &newton,
+                    scales,
+                ) {
+                    Ok((report, increment)) => {
+                        let t_new = t + increment.dt;
+                        // arc length stays between breakpoints and inside the step; past them
+                        // load control resumes from the committed state
+                        let crosses = breakpoints.iter().any(|&b| (b - t) * (b - t_new) < 0.0);
+                        if crosses || t_new > step.end_time || t_new < step_start {
+                            model.rollback();
+                            crossing = None;
+                            arc_blocked = true;
+                            dt = (step.end_time - t).min(inc.maximum).min(dt.max(inc.minimum * 4.0));
+                            continue;
+                        }
+                        Ok((report, Some(increment)))
+                    }
+                    Err(e) => Err(e),
+                }
+            } else {
+                let mut target = (t + dt).min(step.end_time);
+                // land on amplitude breakpoints so load reversals are exact
+                for &b in &breakpoints {
+                    if b > t + 1e-12 * t_end && b < target {
+                        target = b;
+                    }
+                }
+                if step.end_time - target < 1e-3 * dt {
+                    target = step.end_time;
+                }
+                // Predictor: extrapolate the last converged increment (not across a reversal).
+                if let Some((du, dt_last)) = &last_increment {
+                    model.update_free(du, (target - t) / dt_last);
+                }
+                let result = solve_increment(model, &mut solver, target, &newton, scales).map(|r| (r, None));
+                if result.is_err() && first_failed_target.is_none() {
+                    first_failed_target = Some(target);
+                }
+                result
+            };
+            match attempt {
+                Ok((report, arc_increment)) => {
+                    let target = model.time;
+                    let mut limit_point = false;
+                    let mut resume = false;
+                    if let (Some(increment), Some(arc)) = (&arc_increment, crossing.as_mut()) {
+                        limit_point = increment.dt.signum() != arc.previous.dt.signum();
+                        resume = increment.dt > 0.0 && target > arc.resume_after;
+                        if report.iterations <= inc.easy_iterations {
+                            arc.ds = (arc.ds * inc.growth_factor).min(arc.ds_max);
+                        }
+                        arc.previous = increment.clone();
+                        summary.arc_length_increments += 1;
+                        if limit_point {
+                            summary.limit_points += 1;
+                        }
+                    }
+                    force_average.add(norm(&model.internal_force).max(norm(&model.external_force)));
                     let du: Vec<f64> =
                         model.free_dofs().iter().map(|&g| model.displacement[g] - committed_free(model, g)).collect();
+                    // With continuation on, a load-controlled increment whose displacements moved
+                    // far more than the last one's rate predicts has jumped over a limit point to
+                    // another branch: go back and follow the path by arc length instead.
+                    if arc_length_enabled && arc_increment.is_none() && !arc_blocked {
+                        if let Some(previous) = last_converged.clone().filter(|p| p.dt > 0.0 && target > t) {
+                            let previous_norm = norm(&previous.du);
+                            let predicted = previous_norm * (target - t) / previous.dt;
+                            if predicted > 0.0 && norm(&du) > JUMP_RATIO * predicted {
+                                model.rollback();
+                                summary.cut_increments += 1;
+                                cuts_since_commit += 1;
+                                crossing = Some(ArcCrossing {
+                                    ds: previous_norm * std::f64::consts::SQRT_2,
+                                    ds_initial: previous_norm * std::f64::consts::SQRT_2,
+                                    ds_max: 10.0 * previous_norm,
+                                    time_weight: previous_norm / previous.dt,
+                                    previous,
+                                    resume_after: target,
+                                });
+                                continue;
+                            }
+                        }
+                    }
                     let reversal = breakpoints.iter().any(|&b| (b - target).abs() <= 1e-12 * t_end.max(1.0));
-                    last_increment = if reversal { None } else { Some((du, target - t)) };
+                    last_converged = Some(PreviousIncrement { du: du.clone(), dt: target - t });
+                    last_increment = if reversal || target <= t { None } else { Some((du, target - t)) };
+                    first_failed_target = None;
+                    arc_blocked = false;
+                    if resume {
+                        // past the point where load control failed, moving forward again
+                        crossing = None;
+                        dt = (target - t).clamp(inc.minimum, inc.maximum);
+                    }
                     model.commit();
                     t = target;
                     summary.increments += 1;
@@ -376,11 +476,17 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                         s.viscous_dissipation = now[4];
                         s.viscous_share_of_work =
                             if s.work_of_flat != 0.0 { now[4] / s.work_of_flat.abs() } else { 0.0 };
-                        if now[3] != before[3] || cuts_since_commit > 0 {
+                        if now[3] != before[3] || cuts_since_commit > 0 || limit_point {
                             // a jump: the increment had to be cut and the force changed by more
                             // than 5% of the largest force magnitude seen so far
                             let scale = s.max_force.max(-s.pull_off_force).max(now[1].abs());
-                            let kind = if cuts_since_commit > 0 && (now[1] - before[1]).abs() > 0.05 * scale {
+                            let kind = if limit_point {
+                                // the load parameter turned: a load-controlled run jumps here
+                                "limit_point"
+                            } else if arc_increment.is_none()
+                                && cuts_since_commit > 0
+                                && (now[1] - before[1]).abs() > 0.05 * scale
+                            {
                                 "jump"
                             } else if now[3] < before[3] {
                                 "contact_lost"
@@ -431,7 +537,7 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                         "{step_name}: t = {t:.4} dt = {dt:.2e}, {} Newton its, |r| = {last:.2e}",
                         report.iterations
                     ));
-                    if report.iterations <= inc.easy_iterations {
+                    if report.iterations <= inc.easy_iterations && crossing.is_none() && !resume {
                         dt = (dt * inc.growth_factor).min(inc.maximum);
                     }
                     if separated {
@@ -448,6 +554,35 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                     last_increment = None;
                     summary.cut_increments += 1;
                     cuts_since_commit += 1;
+                    if let Some(arc) = crossing.as_mut() {
+                        arc.ds *= 0.5;
+                        bar.set_message(format!("{step_name}: arc length cut to {:.2e} at t = {t:.4} ({e})", arc.ds));
+                        if arc.ds < 1e-4 * arc.ds_initial {
+                            failure = Some((
+                                t,
+                                format!("arc-length continuation stalled (arc length {:.3e}) after: {e}", arc.ds),
+                            ));
+                            break 'steps;
+                        }
+                        continue;
+                    }
+                    if arc_length_enabled && !arc_blocked && cuts_since_commit >= case.case.solver.arc_length_after_cuts
+                    {
+                        if let Some(previous) = last_converged.clone() {
+                            let ds = norm(&previous.du);
+                            if ds > 0.0 && previous.dt > 0.0 {
+                                crossing = Some(ArcCrossing {
+                                    ds: ds * std::f64::consts::SQRT_2,
+                                    ds_initial: ds * std::f64::consts::SQRT_2,
+                                    ds_max: 10.0 * ds,
+                                    time_weight: ds / previous.dt,
+                                    previous,
+                                    resume_after: first_failed_target.unwrap_or(t),
+                                });
+                                continue;
+                            }
+                        }
+                    }
                     dt *= inc.cut_factor;
                     bar.set_message(format!("{step_name}: cut to dt = {dt:.2e} at t = {t:.4} ({e})"));
                     if dt < inc.minimum {
@@ -457,6 +592,8 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                 }
             }
         }
+        step_start = step.end_time;
+        crossing = None;
     }
     bar.finish_and_clear();
     summary.final_time = t;
@@ -528,6 +665,25 @@ pub fn run_sweep(path: &Path, sets: &[String], options: &RunOptions) -> Result<V
     let json = serde_json::to_string_pretty(&summaries).expect("summaries serialize");
     write_atomically(&out.join("sweep.json"), json.as_bytes())?;
     Ok(summaries)
+}
+
+/// A load-controlled increment whose displacement increment exceeds this multiple of the one
+/// the previous increment's rate predicts counts as a jump over a limit point (continuation on).
+const JUMP_RATIO: f64 = 5.0;
+
+/// An arc-length crossing of a limit point in progress.
+struct ArcCrossing {
+    /// Current arc length (displacement units), its first value and its cap.
+    ds: f64,
+    /// Displacement per unit load parameter weighting t in the arc length (the rate of the
+    /// last load-controlled increment).
+    time_weight: f64,
+    ds_initial: f64,
+    ds_max: f64,
+    previous: PreviousIncrement,
+    /// Load control resumes once the load parameter moves forward past this value (the
+    /// target that failed).
+    resume_after: f64,
 }
 
 /// Mean of the force norms of the converged increments (the Newton reference force).

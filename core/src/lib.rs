@@ -11,6 +11,7 @@
 //! * [`output`]: VTK XML (`.vtu` + `.pvd`) and CSV writers, each file written atomically.
 
 pub mod amplitude;
+pub mod arc_length;
 pub mod element;
 pub mod error;
 pub mod interface_law;

@@ -108,10 +108,8 @@ pub fn solve_increment(
     let mut du = vec![0.0; model.n_free()];
     for iteration in 0..=settings.max_iterations {
         let r_norm = norm(&model.residual);
-        let force_scale = norm(&model.internal_force)
-            .max(norm(&model.external_force))
-            .max(scales.force)
-            .max(settings.force_floor);
+        let force_scale =
+            norm(&model.internal_force).max(norm(&model.external_force)).max(scales.force).max(settings.force_floor);
         report.residual_norms.push(r_norm);
         let residual_ok = r_norm <= settings.tol_residual * force_scale;
         if iteration > 0 || r_norm <= 1e-3 * settings.tol_residual * force_scale {

@@ -278,7 +278,11 @@ impl Contribution for CohesiveElements {
         ];
         let ns = self.law.n_state();
         for (k, name) in self.law.state_names().into_iter().enumerate() {
-            fields.push(Field::new(&name, 1, (0..self.points.len()).map(|i| self.state_committed[i * ns + k]).collect()));
+            fields.push(Field::new(
+                &name,
+                1,
+                (0..self.points.len()).map(|i| self.state_committed[i * ns + k]).collect(),
+            ));
         }
         Some((self.points.iter().map(|p| p.position).collect(), fields))
     }

@@ -296,6 +296,28 @@ pub struct SolverSpec {
     /// Increment growth factor after an easy increment (default 1.5).
     #[serde(default = "default_growth")]
     pub growth_factor: f64,
+    /// How to cross a limit point where the increment keeps failing: "none" (default: cut
+    /// until the minimum increment) or "arc-length" (Crisfield's cylindrical arc-length
+    /// continuation in the load parameter, which may turn the approach back; load control
+    /// resumes beyond the point that failed).
+    #[serde(default)]
+    pub continuation: ContinuationSpec,
+    /// Consecutive cuts after which arc-length continuation takes over (default 2).
+    #[serde(default = "default_arc_length_after_cuts")]
+    pub arc_length_after_cuts: usize,
+}
+
+/// Limit-point crossing method.
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum ContinuationSpec {
+    #[default]
+    None,
+    ArcLength,
+}
+
+fn default_arc_length_after_cuts() -> usize {
+    2
 }
 
 impl Default for SolverSpec {

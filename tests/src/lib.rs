@@ -74,7 +74,8 @@ pub fn solve_at_full_load(model: &mut Model) -> IncrementReport {
     model.finalize().unwrap();
     let mut solver = SparseSolver::new(model.pattern()).unwrap();
     let settings = NewtonSettings { tol_residual: 1e-10, ..NewtonSettings::default() };
-    let report = solve_increment(model, &mut solver, 1.0, &settings, ReferenceScales::default()).unwrap_or_else(|e| panic!("{e}"));
+    let report = solve_increment(model, &mut solver, 1.0, &settings, ReferenceScales::default())
+        .unwrap_or_else(|e| panic!("{e}"));
     model.commit();
     report
 }

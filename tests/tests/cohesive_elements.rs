@@ -95,7 +95,10 @@ fn mixed_mode_separation_dissipates_the_benzeggagh_kenane_energy() {
         let (_, summary) = run_case("cases/validation/mixed-mode-blocks.toml", &[&x, &z], &label);
         assert_eq!(summary.status, "completed");
         let w = work_of_top(&summary.output_directory.join("history.csv"), [ux, uz]);
-        println!("theta {theta_deg}: work {w:.6}, Benzeggagh-Kenane {expected:.6} ({:+.3}%)", 100.0 * (w / expected - 1.0));
+        println!(
+            "theta {theta_deg}: work {w:.6}, Benzeggagh-Kenane {expected:.6} ({:+.3}%)",
+            100.0 * (w / expected - 1.0)
+        );
         assert!((w / expected - 1.0).abs() < 5e-3, "theta {theta_deg}: work {w} vs {expected}");
     }
 }
@@ -130,13 +133,17 @@ fn axisymmetric_cylinders_with_an_elastic_interface_match_the_closed_form() {
 fn axisymmetric_cohesive_tangent_matches_finite_differences_while_softening() {
     let (_, mut built) = stiction_tests::build_case(
         "cases/validation/two-discs-axisym-cohesive.toml",
-        &["mesh.parameters.h=1.0", "interfaces.0.parameters={ G_c = 0.001, sigma_max = 0.2, penalty = 50.0, initially_bonded = 1 }"],
+        &[
+            "mesh.parameters.h=1.0",
+            "interfaces.0.parameters={ G_c = 0.001, sigma_max = 0.2, penalty = 50.0, initially_bonded = 1 }",
+        ],
     );
     let m = &mut built.model;
     m.apply_time(0.0);
     m.assemble(false).unwrap();
     m.commit();
-    let upper: std::collections::HashSet<usize> = m.mesh.group_nodes(m.mesh.group("upper").unwrap()).into_iter().collect();
+    let upper: std::collections::HashSet<usize> =
+        m.mesh.group_nodes(m.mesh.group("upper").unwrap()).into_iter().collect();
     for (n, x) in m.mesh.nodes.clone().iter().enumerate() {
         let jump = if upper.contains(&n) { [0.002 * x[0], 0.006] } else { [0.0; 2] };
         for c in 0..2 {

@@ -61,7 +61,35 @@ fn lennard_jones_pull_off_lies_in_the_jkr_dmt_transition_and_near_maugis() {
     );
     assert!(fe > 1.5 && fe < 2.0, "outside JKR-DMT: {fe}");
     assert!((fe / md - 1.0).abs() < 0.08, "vs Maugis-Dugdale {md}: {fe}");
-    // the jump-in is recorded
+    // arc length passed the limit points of jump-in and pull-off, with no viscous dissipation
     let events = std::fs::read_to_string(summary.output_directory.join("events.csv")).unwrap();
-    assert!(events.lines().any(|l| l.contains(",jump,") || l.contains(",increment_cut,")), "{events}");
+    let limit_points = events.lines().filter(|l| l.contains(",limit_point,")).count();
+    assert!(summary.limit_points >= 2 && limit_points == summary.limit_points, "{events}");
+    assert_eq!(i.viscous_dissipation, 0.0);
+    // the same run crossing the jumps by viscous regularisation instead gives the same pull-off
+    let (_, viscous) = run_case(
+        "cases/validation/lj-sphere.toml",
+        &[
+            "mesh.parameters.h_contact=2.0",
+            "mesh.parameters.r_fine=40.0",
+            "steps.0.max_increment=0.02",
+            "steps.1.max_increment=0.01",
+            "steps.1.initial_increment=0.01",
+            "solver.continuation=\"none\"",
+            "interfaces.0.viscosity=1e-4",
+        ],
+        "lj-sphere-viscous",
+    );
+    assert_eq!(viscous.status, "completed");
+    let v = &viscous.interfaces[0];
+    println!(
+        "arc length: pull-off {:.2} nN, {} limit points, {} arc-length increments; viscous (zeta 1e-4): pull-off {:.2} nN, viscous dissipation {:.1} aJ",
+        -i.pull_off_force,
+        summary.limit_points,
+        summary.arc_length_increments,
+        -v.pull_off_force,
+        v.viscous_dissipation
+    );
+    assert!((v.pull_off_force / i.pull_off_force - 1.0).abs() < 1e-3, "{} vs {}", v.pull_off_force, i.pull_off_force);
+    assert!(v.viscous_dissipation > 0.0);
 }

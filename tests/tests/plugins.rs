@@ -118,11 +118,17 @@ fn the_mixed_mode_cohesive_plugin_matches_the_built_in_law_and_passes_conformanc
     let path = build_dir().join("debug").join("libstiction_plugin_cohesive_zone.so");
     let registry = LawRegistry::new(&[]);
     let ctx = LawContext { modulus: 1.0, face_size: 1.0 };
-    let params: Vec<(String, f64)> =
-        [("G_c", 0.8), ("sigma_max", 6.0), ("penalty", 2e4), ("G_IIc", 2.4), ("tau_max", 9.0), ("initially_bonded", 1.0)]
-            .iter()
-            .map(|(k, v)| (k.to_string(), *v))
-            .collect();
+    let params: Vec<(String, f64)> = [
+        ("G_c", 0.8),
+        ("sigma_max", 6.0),
+        ("penalty", 2e4),
+        ("G_IIc", 2.4),
+        ("tau_max", 9.0),
+        ("initially_bonded", 1.0),
+    ]
+    .iter()
+    .map(|(k, v)| (k.to_string(), *v))
+    .collect();
     let dynamic = make_law(&registry, path.to_str().unwrap(), &workspace_root(), &params, None, &ctx).unwrap();
     let builtin = make_law(&registry, "cohesive-zone", &workspace_root(), &params, None, &ctx).unwrap();
     assert_eq!((dynamic.gap_dimension(), builtin.gap_dimension()), (3, 3));

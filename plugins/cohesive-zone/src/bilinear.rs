@@ -46,11 +46,8 @@ impl Bilinear {
     /// Fracture energy G_c(B) (Benzeggagh-Kenane) and d G_c / d B.
     pub fn fracture_energy(&self, b: f64) -> (f64, f64) {
         let g = self.g_1c + (self.g_2c - self.g_1c) * b.powf(self.eta);
-        let dg = if b > 0.0 || self.eta == 1.0 {
-            (self.g_2c - self.g_1c) * self.eta * b.powf(self.eta - 1.0)
-        } else {
-            0.0
-        };
+        let dg =
+            if b > 0.0 || self.eta == 1.0 { (self.g_2c - self.g_1c) * self.eta * b.powf(self.eta - 1.0) } else { 0.0 };
         (g, dg)
     }
 

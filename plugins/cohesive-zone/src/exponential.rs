@@ -37,9 +37,8 @@ impl Exponential {
         let e = (-(delta[1] * delta[1] + delta[2] * delta[2]) / dt2).exp();
         // dE/ds_i and d2E/ds_i ds_j for i, j in the shear components 1, 2
         let de = |i: usize| -2.0 * delta[i] / dt2 * e;
-        let dde = |i: usize, j: usize| {
-            (if i == j { -2.0 / dt2 } else { 0.0 } + 4.0 * delta[i] * delta[j] / (dt2 * dt2)) * e
-        };
+        let dde =
+            |i: usize, j: usize| (if i == j { -2.0 / dt2 } else { 0.0 } + 4.0 * delta[i] * delta[j] / (dt2 * dt2)) * e;
         let g = self.g_c;
         let mut value = [g * dp / self.d_n * e, g * p * de(1), g * p * de(2)];
         let mut tangent = [[0.0; 3]; 3];

@@ -111,7 +111,14 @@ impl Law for CohesiveZone {
                 0.0,
                 f64::INFINITY,
             ),
-            Parameter::optional(c"tau_max", c"stress", c"shear cohesive strength; 0 = equal to sigma_max", 0.0, 0.0, f64::INFINITY),
+            Parameter::optional(
+                c"tau_max",
+                c"stress",
+                c"shear cohesive strength; 0 = equal to sigma_max",
+                0.0,
+                0.0,
+                f64::INFINITY,
+            ),
             Parameter::optional(
                 c"eta",
                 c"-",
@@ -307,7 +314,10 @@ mod tests {
         assert!((peak.value[1] + 4.0).abs() < 1e-12, "shear peak {}", peak.value[1]);
         let w = work_along(&l, [0.0, 1.0, 0.0], 12.0 * dt);
         assert!((w - 1.0).abs() < 1e-6, "shear work of separation {w}");
-        assert!(CohesiveZone::create(&[1.0, 6.0, 2e4, 1.0, 0.0, 2.0, 0.0, 2.0], "").is_err(), "exponential with G_IIc != G_c");
+        assert!(
+            CohesiveZone::create(&[1.0, 6.0, 2e4, 1.0, 0.0, 2.0, 0.0, 2.0], "").is_err(),
+            "exponential with G_IIc != G_c"
+        );
     }
 
     #[test]
@@ -325,8 +335,14 @@ mod tests {
             assert!((back.value[k] - 0.25 * r.value[k]).abs() < 1e-9 * r.value[k].abs(), "secant to the origin");
         }
         assert_eq!(s[2], committed[2], "no damage growth while unloading");
-        assert!(CohesiveZone::create(&[1.0, 6.0, 10.0, 0.0, 0.0, 0.0, 0.0, 2.0], "").is_err(), "k below sigma_max^2 / 2 G_c");
+        assert!(
+            CohesiveZone::create(&[1.0, 6.0, 10.0, 0.0, 0.0, 0.0, 0.0, 2.0], "").is_err(),
+            "k below sigma_max^2 / 2 G_c"
+        );
         // a shear strength the mode-II energy cannot honour
-        assert!(CohesiveZone::create(&[1.0, 6.0, 100.0, 0.0, 0.0, 0.1, 9.0, 2.0], "").is_err(), "k below tau_max^2 / 2 G_IIc");
+        assert!(
+            CohesiveZone::create(&[1.0, 6.0, 100.0, 0.0, 0.0, 0.1, 9.0, 2.0], "").is_err(),
+            "k below tau_max^2 / 2 G_IIc"
+        );
     }
 }

@@ -308,7 +308,9 @@ unsafe extern "C" fn evaluate<L: Law>(
     message_len: usize,
 ) -> i32 {
     // SAFETY: the host passes a live instance and N_STATE values in each state buffer.
-    let result = unsafe { with_states::<L, _>(instance, state_committed, state_trial, |law, old, new| law.evaluate(gap, old, new)) };
+    let result = unsafe {
+        with_states::<L, _>(instance, state_committed, state_trial, |law, old, new| law.evaluate(gap, old, new))
+    };
     let write = |Response { value, tangent, in_contact, area }: Response| {
         // SAFETY: `response` is a valid out-pointer.
         unsafe { *response = AbiResponse { value, tangent, in_contact: in_contact as u32, area } };
@@ -327,8 +329,9 @@ unsafe extern "C" fn evaluate_mixed<L: Law>(
 ) -> i32 {
     // SAFETY: the host passes 3 gap values, a live instance and N_STATE values per state buffer.
     let gap = unsafe { [*gap, *gap.add(1), *gap.add(2)] };
-    let result =
-        unsafe { with_states::<L, _>(instance, state_committed, state_trial, |law, old, new| law.evaluate_mixed(gap, old, new)) };
+    let result = unsafe {
+        with_states::<L, _>(instance, state_committed, state_trial, |law, old, new| law.evaluate_mixed(gap, old, new))
+    };
     let write = |MixedResponse { value, tangent, in_contact, area }: MixedResponse| {
         let flat = std::array::from_fn(|k| tangent[k / 3][k % 3]);
         // SAFETY: `response` is a valid out-pointer.
