@@ -545,6 +545,9 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
             extra_order: spec.quadrature_order,
             viscosity: spec.viscosity,
         };
+        if !(spec.max_viscous_share > 0.0 && spec.max_viscous_share <= 1.0) {
+            return Err(case.error(format!("{key}.max_viscous_share"), "must be a fraction in (0, 1]"));
+        }
         if !(spec.viscosity >= 0.0 && spec.viscosity.is_finite()) {
             return Err(case.error(format!("{key}.viscosity"), "must be a finite number >= 0"));
         }

@@ -50,6 +50,8 @@ pub struct RunSummary {
     pub solve_seconds: f64,
     pub plastic_dissipation: f64,
     pub output_directory: PathBuf,
+    /// Warnings about the results (e.g. a viscous share above its limit).
+    pub warnings: Vec<String>,
     /// Per interface: the load cycle's key numbers.
     pub interfaces: Vec<InterfaceSummary>,
 }
@@ -79,10 +81,16 @@ pub struct InterfaceSummary {
     pub work_of_flat: f64,
     /// Increments where points came into or out of contact (see events.csv).
     pub contact_events: usize,
-    /// Energy dissipated by the viscous regularisation, and its share of |work_of_flat| (kept
-    /// small: it measures how far the crossing of instabilities is from quasi-static).
+    /// Gross work of the flat: integral of |force| |d approach| (the energy that went through
+    /// the interface, either way).
+    pub gross_work_of_flat: f64,
+    /// Energy dissipated by the viscous regularisation and its share of `gross_work_of_flat`
+    /// (kept below the interface's `max_viscous_share`: it measures how far the crossing of
+    /// instabilities is from quasi-static).
     pub viscous_dissipation: f64,
     pub viscous_share_of_work: f64,
+    /// The share at or above which a warning is issued.
+    pub max_viscous_share: f64,
 }
 
 /// Output directory of a case: `--out`, else `output.directory`, else `out/<name>`.
@@ -212,10 +220,20 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         solve_seconds: 0.0,
         plastic_dissipation: 0.0,
         output_directory: out.clone(),
+        warnings: Vec::new(),
         interfaces: model
             .contributions
             .iter()
-            .map(|c| InterfaceSummary { name: c.name().to_string(), ..Default::default() })
+            .map(|c| InterfaceSummary {
+                name: c.name().to_string(),
+                max_viscous_share: case
+                    .case
+                    .interfaces
+                    .iter()
+                    .find(|i| i.name == c.name())
+                    .map_or(default_share(), |i| i.max_viscous_share),
+                ..Default::default()
+            })
             .collect(),
     };
     let mut events = HistoryWriter::create(
@@ -455,6 +473,7 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                         let s = &mut summary.interfaces[k];
                         // work of the flat: trapezoid in approach
                         s.work_of_flat += 0.5 * (now[1] + before[1]) * (now[0] - before[0]);
+                        s.gross_work_of_flat += 0.5 * (now[1].abs() + before[1].abs()) * (now[0] - before[0]).abs();
                         if now[1] > s.max_force {
                             s.max_force = now[1];
                             s.approach_at_max_force = now[0];
@@ -475,7 +494,7 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                         s.max_contact_area = s.max_contact_area.max(now[2]);
                         s.viscous_dissipation = now[4];
                         s.viscous_share_of_work =
-                            if s.work_of_flat != 0.0 { now[4] / s.work_of_flat.abs() } else { 0.0 };
+                            if s.gross_work_of_flat > 0.0 { now[4] / s.gross_work_of_flat } else { 0.0 };
                         if now[3] != before[3] || cuts_since_commit > 0 || limit_point {
                             // a jump: the increment had to be cut and the force changed by more
                             // than 5% of the largest force magnitude seen so far
@@ -601,6 +620,31 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
     summary.wall_seconds = wall.elapsed().as_secs_f64();
     summary.status = if failure.is_some() { "failed".into() } else { "completed".into() };
     summary.message = failure.as_ref().map(|f| f.1.clone());
+    for (i, now) in summary.interfaces.iter().zip(&observed) {
+        if i.viscous_dissipation > 0.0 && i.viscous_share_of_work >= i.max_viscous_share {
+            events.append_fields(&[
+                format!("{:.10e}", t),
+                format!("{:.10e}", now[0]),
+                i.name.clone(),
+                "viscous_share_exceeded".to_string(),
+                format!("{}", now[3]),
+                format!("{}", now[3]),
+                format!("{:.10e}", now[1]),
+                format!("{:.10e}", now[1]),
+                "0".to_string(),
+            ])?;
+            summary.warnings.push(format!(
+                "interface '{}': the viscous regularisation dissipated {:.4e} = {:.1}% of the gross work of the flat, above the limit max_viscous_share = {}; lower its viscosity or use solver.continuation = \"arc-length\"",
+                i.name,
+                i.viscous_dissipation,
+                100.0 * i.viscous_share_of_work,
+                i.max_viscous_share
+            ));
+        }
+    }
+    for w in &summary.warnings {
+        eprintln!("warning: {w}");
+    }
     write_summary(&out, &summary)?;
     if !summary.interfaces.is_empty() {
         if let Some(curve) = crate::plots::read_history(&out.join("history.csv"), &case.name) {
@@ -684,6 +728,10 @@ struct ArcCrossing {
     /// Load control resumes once the load parameter moves forward past this value (the
     /// target that failed).
     resume_after: f64,
+}
+
+fn default_share() -> f64 {
+    crate::case::InterfaceSpec::default_max_viscous_share()
 }
 
 /// Mean of the force norms of the converged increments (the Newton reference force).

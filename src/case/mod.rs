@@ -215,6 +215,11 @@ pub struct InterfaceSpec {
     /// converged increment; its dissipated energy is reported as `viscous_dissipation`.
     #[serde(default)]
     pub viscosity: f64,
+    /// Largest acceptable share of the viscous regularisation's dissipation in the gross work
+    /// of the flat (integral of |force| |d approach|); above it the run reports a warning in
+    /// summary.json, on stderr and as a `viscous_share_exceeded` event (default 0.05).
+    #[serde(default = "default_max_viscous_share")]
+    pub max_viscous_share: f64,
     /// Discrete points (e.g. asperities) instead of the whole surface; needs a force law.
     pub points: Option<PointsSpec>,
 }
@@ -314,6 +319,17 @@ pub enum ContinuationSpec {
     #[default]
     None,
     ArcLength,
+}
+
+fn default_max_viscous_share() -> f64 {
+    InterfaceSpec::default_max_viscous_share()
+}
+
+impl InterfaceSpec {
+    /// Default of `max_viscous_share`.
+    pub fn default_max_viscous_share() -> f64 {
+        0.05
+    }
 }
 
 fn default_arc_length_after_cuts() -> usize {

@@ -87,3 +87,47 @@ fn arc_length_follows_the_closed_form_path_through_both_folds_without_dissipatio
     // the stable branch reaches the peak adhesive traction
     assert!((min_force / -peak - 1.0).abs() < 1e-3, "{min_force} vs {}", -peak);
 }
+
+/// The viscous regularisation, the other way across jumps, reports its dissipation and warns
+/// when it exceeds the stated share (`max_viscous_share`, default 5%) of the gross work of the
+/// flat: zeta = 1e-4 stays below it on the LJ block, zeta = 1e-2 (a regularisation that
+/// absorbs the jumps' energy) does not.
+#[test]
+fn a_viscous_share_above_its_limit_is_reported() {
+    let mut shares = Vec::new();
+    for (zeta, label) in [("1e-4", "lj-block-viscous-small"), ("1e-2", "lj-block-viscous-large")] {
+        let (_, s) = run_case(
+            "cases/validation/lj-block-arc-length.toml",
+            &["solver.continuation=\"none\"", &format!("interfaces.0.viscosity={zeta}")],
+            label,
+        );
+        assert_eq!(s.status, "completed");
+        let i = &s.interfaces[0];
+        println!(
+            "zeta {zeta}: viscous dissipation {:.4} = {:.2}% of the gross work {:.4}; warnings {:?}",
+            i.viscous_dissipation,
+            100.0 * i.viscous_share_of_work,
+            i.gross_work_of_flat,
+            s.warnings
+        );
+        assert!(i.viscous_dissipation > 0.0);
+        shares.push((i.viscous_share_of_work, s.warnings.clone(), s.output_directory.clone()));
+    }
+    assert!(shares[0].0 < 0.05 && shares[0].1.is_empty(), "{:?}", shares[0]);
+    assert!(shares[1].0 > 0.05, "{:?}", shares[1]);
+    assert!(shares[1].1.iter().any(|w| w.contains("max_viscous_share") && w.contains("'flat'")), "{:?}", shares[1].1);
+    let events = std::fs::read_to_string(shares[1].2.join("events.csv")).unwrap();
+    assert!(events.contains("viscous_share_exceeded"), "{events}");
+}
+
+/// Arc length and viscous regularisation exclude each other (the viscous term needs time to
+/// move forward); the error names the key.
+#[test]
+fn arc_length_with_a_viscous_interface_is_refused() {
+    let (loaded, mut built) =
+        stiction_tests::build_case("cases/validation/lj-block-arc-length.toml", &["interfaces.0.viscosity=1e-4"]);
+    let options =
+        stiction::run::RunOptions { out: Some(std::env::temp_dir().join("stiction-arc-visc")), progress: false };
+    let e = stiction::run::run_model(&loaded, &mut built, &options).err().unwrap().to_string();
+    assert!(e.contains("solver.continuation") && e.contains("viscosity"), "{e}");
+}
