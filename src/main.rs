@@ -24,8 +24,10 @@ enum Command {
     /// (0 -> 1 over t in [0, 1]); steps[].initial_increment = step/10, min_increment =
     /// 1e-6 step, max_increment = step, output_every = 1; solver.max_iterations = 25,
     /// tol_residual = 1e-8, tol_displacement = 1e-6, line_search = true, threads = 0 (all
-    /// cores), cut_factor = 0.25, growth_factor = 1.5; output.directory = out/<name>,
-    /// output.vtk = true.
+    /// cores), cut_factor = 0.25, growth_factor = 1.5, continuation = "none" (or
+    /// "arc-length"), arc_length_after_cuts = 2; interfaces[].viscosity = 0,
+    /// max_viscous_share = 0.05, quadrature_order = 0, initial_gap = 0; output.directory =
+    /// out/<name>, output.vtk = true.
     Run {
         /// The case file (TOML).
         case: PathBuf,

@@ -7,6 +7,9 @@
 //! Edit NAME, the parameters, `create` and `evaluate`. Conventions (see stiction-law-sdk):
 //! gap positive when open; value positive when it pushes the surfaces apart; `tangent` is
 //! d value / d gap; `evaluate` must not mutate `self` and must write the whole trial state.
+//! A mixed-mode law (normal and tangential opening, e.g. for cohesive elements) also sets
+//! `const GAP_DIMENSION: usize = 3` and implements `evaluate_mixed` (value vector and 3 x 3
+//! tangent in the local frame; see the `cohesive-zone` law for an example).
 
 use stiction_law_sdk::{Law, LawKind, Parameter, Response, export_law};
 
