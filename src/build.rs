@@ -206,7 +206,7 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
         }
     }
     // Zero-thickness cohesive interfaces: split the mesh along their surfaces first.
-    let mut splits = Vec::new();
+    let mut splits: Vec<(usize, stiction_core::mesh::Mesh, std::collections::HashMap<usize, usize>)> = Vec::new();
     let mut mesh = mesh;
     for (i, spec) in c.interfaces.iter().enumerate().filter(|(_, s)| s.kind == "cohesive") {
         let key = format!("interfaces[{i}]");
@@ -216,6 +216,18 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
                 "required for type 'cohesive': the volume group that gets the duplicated nodes",
             )
         })?;
+        // a surface already split by an earlier cohesive interface (same side, no split list of
+        // its own) shares that split, e.g. contact on a pre-crack next to a cohesive ligament
+        let earlier = splits.iter().find(|(j, ..)| {
+            let other: &crate::case::InterfaceSpec = &c.interfaces[*j];
+            let other_surfaces = other.split.clone().unwrap_or_else(|| vec![other.surface.clone()]);
+            spec.split.is_none() && other.side.as_deref() == Some(side) && other_surfaces.contains(&spec.surface)
+        });
+        if let Some((_, original, pairs)) = earlier {
+            let shared = (i, original.clone(), pairs.clone());
+            splits.push(shared);
+            continue;
+        }
         let surfaces = spec.split.clone().unwrap_or_else(|| vec![spec.surface.clone()]);
         if !surfaces.contains(&spec.surface) {
             return Err(
@@ -545,6 +557,12 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
             extra_order: spec.quadrature_order,
             viscosity: spec.viscosity,
         };
+        if spec.viscosity > 0.0 && c.solver.continuation == crate::case::ContinuationSpec::ArcLength {
+            return Err(case.error(
+                format!("{key}.viscosity"),
+                "a viscous regularisation cannot be combined with solver.continuation = \"arc-length\" (the viscous term needs time to move forward; arc length may turn it back): use one of them",
+            ));
+        }
         if !(spec.max_viscous_share > 0.0 && spec.max_viscous_share <= 1.0) {
             return Err(case.error(format!("{key}.max_viscous_share"), "must be a fraction in (0, 1]"));
         }

@@ -128,7 +128,8 @@ enum PluginCommand {
 }
 
 fn describe(l: &stiction_interfaces::plugin::LawLibrary) {
-    println!("{} {} ({:?}, {} state variables) [{}]", l.name, l.version, l.kind, l.n_state, l.origin);
+    let gap = if l.gap_dimension == 3 { "mixed mode: normal and tangential opening" } else { "normal gap" };
+    println!("{} {} ({:?}, {gap}, {} state variables) [{}]", l.name, l.version, l.kind, l.n_state, l.origin);
     if let Some(c) = &l.config_description {
         println!("    config_file: {c}");
     }
@@ -269,26 +270,42 @@ fn main() -> ExitCode {
             let options = RunOptions { out, progress: !quiet && std::io::stderr().is_terminal() };
             for summary in stiction::run::run_sweep(&case, &sets, &options)? {
                 println!(
-                    "{}: {} increments ({} cut), {} Newton iterations, {:.2} s; {} free dofs; output in {}",
+                    "{}: {} increments ({} cut{}), {} Newton iterations, {:.2} s; {} free dofs; output in {}",
                     summary.case,
                     summary.increments,
                     summary.cut_increments,
+                    if summary.arc_length_increments > 0 {
+                        format!(
+                            "; {} by arc length through {} limit points",
+                            summary.arc_length_increments, summary.limit_points
+                        )
+                    } else {
+                        String::new()
+                    },
                     summary.newton_iterations,
                     summary.wall_seconds,
                     summary.n_free_dofs,
                     summary.output_directory.display()
                 );
+                // forces in the case's units (positive compressive, negative adhesive)
                 for i in &summary.interfaces {
-                    println!(
-                        "  {}: max force {:.3} uN at approach {:.3}; pull-off {:.3} uN at {:.3}; max real area {:.1}; {} in contact at max",
-                        i.name,
-                        i.max_force * 1e-3,
-                        i.approach_at_max_force,
-                        i.pull_off_force * 1e-3,
-                        i.approach_at_pull_off,
-                        i.max_contact_area,
-                        i.n_contact_at_max_force
-                    );
+                    if i.kind == "cohesive" {
+                        println!(
+                            "  {}: most tensile force {:.4e}, most compressive {:.4e}; max contact area {:.4e}",
+                            i.name, i.pull_off_force, i.max_force, i.max_contact_area
+                        );
+                    } else {
+                        println!(
+                            "  {}: max force {:.4e} at approach {:.4}; pull-off {:.4e} at {:.4}; max real area {:.4e}; {} in contact at max",
+                            i.name,
+                            i.max_force,
+                            i.approach_at_max_force,
+                            i.pull_off_force,
+                            i.approach_at_pull_off,
+                            i.max_contact_area,
+                            i.n_contact_at_max_force
+                        );
+                    }
                 }
             }
             Ok(())

@@ -60,6 +60,8 @@ pub struct RunSummary {
 #[derive(Debug, Clone, Serialize, Default)]
 pub struct InterfaceSummary {
     pub name: String,
+    /// "rigid-flat" or "cohesive".
+    pub kind: String,
     pub max_force: f64,
     pub approach_at_max_force: f64,
     pub n_contact_at_max_force: f64,
@@ -224,15 +226,14 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         interfaces: model
             .contributions
             .iter()
-            .map(|c| InterfaceSummary {
-                name: c.name().to_string(),
-                max_viscous_share: case
-                    .case
-                    .interfaces
-                    .iter()
-                    .find(|i| i.name == c.name())
-                    .map_or(default_share(), |i| i.max_viscous_share),
-                ..Default::default()
+            .map(|c| {
+                let spec = case.case.interfaces.iter().find(|i| i.name == c.name());
+                InterfaceSummary {
+                    name: c.name().to_string(),
+                    kind: spec.map_or_else(String::new, |i| i.kind.clone()),
+                    max_viscous_share: spec.map_or(default_share(), |i| i.max_viscous_share),
+                    ..Default::default()
+                }
             })
             .collect(),
     };
@@ -336,12 +337,6 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         .collect();
     let mut force_average = RunningMean::default();
     let arc_length_enabled = case.case.solver.continuation == crate::case::ContinuationSpec::ArcLength;
-    if arc_length_enabled && case.case.interfaces.iter().any(|i| i.viscosity > 0.0) {
-        return Err(case.error(
-            "solver.continuation",
-            "arc-length continuation and a viscous regularisation (interfaces[].viscosity) exclude each other: the viscous term needs time to move forward",
-        ));
-    }
     // The last converged increment (free dofs, time), kept through cuts to start arc length.
     let mut last_converged: Option<PreviousIncrement> = None;
     let mut crossing: Option<ArcCrossing> = None;

@@ -37,7 +37,14 @@ pub fn apply(root: &mut toml::Value, assignment: &str) -> Result<(), String> {
         toml::Value::Array(a) => {
             let len = a.len();
             let idx: usize = last.parse().map_err(|_| format!("'{path}': '{last}' must be an array index"))?;
-            *a.get_mut(idx).ok_or_else(|| format!("'{path}': index {idx} is past the end (length {len})"))? = value;
+            if idx == len {
+                // one past the end appends, e.g. --set interfaces.1={ ... } adds an interface
+                a.push(value);
+            } else {
+                *a.get_mut(idx)
+                    .ok_or_else(|| format!("'{path}': index {idx} is past the end (length {len}; {len} appends)"))? =
+                    value;
+            }
         }
         _ => return Err(format!("'{}' is not a table or array", parents.join("."))),
     }
@@ -58,6 +65,9 @@ mod tests {
         assert_eq!(v["s"][0]["t"].as_integer(), Some(3));
         assert_eq!(v["c"]["d"].as_str(), Some("x"));
         assert_eq!(v["name"].as_str(), Some("plain text"));
+        apply(&mut v, "s.1={ t = 4.0 }").unwrap();
+        assert_eq!(v["s"][1]["t"].as_float(), Some(4.0), "one past the end appends");
+        assert!(apply(&mut v, "s.3={ t = 4.0 }").unwrap_err().contains("past the end"));
         assert!(apply(&mut v, "s.4.t=1").unwrap_err().contains("past the end"));
         assert!(apply(&mut v, "nothing").is_err());
     }

@@ -124,10 +124,8 @@ fn a_viscous_share_above_its_limit_is_reported() {
 /// move forward); the error names the key.
 #[test]
 fn arc_length_with_a_viscous_interface_is_refused() {
-    let (loaded, mut built) =
-        stiction_tests::build_case("cases/validation/lj-block-arc-length.toml", &["interfaces.0.viscosity=1e-4"]);
-    let options =
-        stiction::run::RunOptions { out: Some(std::env::temp_dir().join("stiction-arc-visc")), progress: false };
-    let e = stiction::run::run_model(&loaded, &mut built, &options).err().unwrap().to_string();
-    assert!(e.contains("solver.continuation") && e.contains("viscosity"), "{e}");
+    let path = stiction_tests::workspace_root().join("cases/validation/lj-block-arc-length.toml");
+    let loaded = stiction::case::load(&path, &["interfaces.0.viscosity=1e-4".to_string()]).unwrap();
+    let e = stiction::build::build(&loaded).err().unwrap().to_string();
+    assert!(e.contains("interfaces[0].viscosity") && e.contains("arc-length"), "{e}");
 }

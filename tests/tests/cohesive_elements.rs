@@ -154,3 +154,54 @@ fn axisymmetric_cohesive_tangent_matches_finite_differences_while_softening() {
     println!("axisymmetric cohesive elements (softening): tangent vs finite differences {err:.2e}");
     assert!(err < 1e-5, "{err}");
 }
+
+/// A second cohesive interface on a surface another one already split (here frictionless
+/// contact on the pre-crack of the full DCB next to the cohesive ligament) shares that split
+/// instead of splitting again. Under mode-I opening the crack faces separate, so the contact
+/// carries nothing and the load-line reaction equals the run without it.
+#[test]
+fn contact_on_a_pre_crack_shares_the_ligament_split() {
+    let contact = [
+        "interfaces.1={ name = \"crack-contact\", type = \"cohesive\", surface = \"crack\", side = \"upper\", law = \"frictionless-contact\", shear_stiffness = 0.0 }",
+        "steps.0.end_time=0.08",
+        "mesh.parameters.h_fine=2.5",
+        "mesh.parameters.h_coarse=5.0",
+    ];
+    let (with_contact, s1) = run_case("cases/validation/dcb-full.toml", &contact, "dcb-crack-contact");
+    let (without, s2) = run_case("cases/validation/dcb-full.toml", &contact[1..], "dcb-no-crack-contact");
+    assert_eq!((s1.status.as_str(), s2.status.as_str()), ("completed", "completed"));
+    let load = |m: &stiction::build::BuiltModel| {
+        let nodes = m.model.mesh.group_nodes(m.model.mesh.group("load_top").unwrap());
+        m.model.reaction(&nodes)[2]
+    };
+    let (a, b) = (load(&with_contact), load(&without));
+    let crack_points = with_contact.model.contributions[1].point_output().unwrap().0.len();
+    println!("load-line reaction with crack contact {a:.10e}, without {b:.10e}; {crack_points} crack-face points");
+    assert!(crack_points > 0);
+    assert!((a - b).abs() <= 1e-9 * b.abs(), "{a} vs {b}");
+    let gaps = &with_contact.model.contributions[1].point_output().unwrap().1[0].values;
+    assert!(gaps.iter().all(|g| *g >= 0.0), "the crack faces open");
+
+    // closing the arms instead: without the crack interface they pass through each other; with
+    // it (no separation: the faces slide but stay together normally) they stop at the penalty's
+    // small penetration and the load line meets a stiff support
+    let closing = ["boundary.1.value=-1.0", "boundary.2.value=1.0"];
+    let tie = "interfaces.1.parameters={ no_separation = 1 }";
+    let with_sets: Vec<&str> = contact.iter().chain(&closing).chain(std::iter::once(&tie)).copied().collect();
+    let without_sets: Vec<&str> = contact[1..].iter().chain(&closing).copied().collect();
+    let (closed, s3) = run_case("cases/validation/dcb-full.toml", &with_sets, "dcb-crack-closing");
+    let (through, s4) = run_case("cases/validation/dcb-full.toml", &without_sets, "dcb-crack-closing-free");
+    assert_eq!((s3.status.as_str(), s4.status.as_str()), ("completed", "completed"));
+    let min_gap = |m: &stiction::build::BuiltModel| {
+        // opening of the pre-crack at the load line: top arm's bottom face minus bottom arm's top face
+        let (_, fields) = m.model.contributions[1].point_output().unwrap_or_default();
+        fields.first().map_or(f64::NAN, |f| f.values.iter().fold(f64::INFINITY, |a, &b| a.min(b)))
+    };
+    let closed_gap = min_gap(&closed);
+    let (rc, rt) = (load(&closed), load(&through));
+    println!(
+        "closing: with contact min crack gap {closed_gap:.3e}, load-line reaction {rc:.4e}; without contact {rt:.4e}"
+    );
+    assert!(closed_gap > -2e-3 && closed_gap < 0.0, "penalty penetration only: {closed_gap}");
+    assert!(rc.abs() > 10.0 * rt.abs(), "contact stiffens the load line: {rc} vs {rt}");
+}
