@@ -148,8 +148,8 @@ pub fn solve_increment(
         let mut accepted = matches!(first, Ok(_)) && norm(&model.residual) < r_norm * (1.0 - 1e-4);
         if !accepted && settings.line_search {
             let mut previous = alpha;
+            let mut trial_norm = if first.is_ok() { norm(&model.residual) } else { f64::INFINITY };
             for _ in 0..settings.max_line_search {
-                let trial_norm = if first.is_ok() { norm(&model.residual) } else { f64::INFINITY };
                 // Quadratic model of ||r||^2 along the search direction, safeguarded to [0.1, 0.5].
                 let next = if trial_norm.is_finite() {
                     let (g0, g1) = (r_norm * r_norm, trial_norm * trial_norm);
@@ -161,7 +161,8 @@ pub fn solve_increment(
                 model.update_free(&du, next - previous);
                 previous = next;
                 alpha = next;
-                if model.assemble(false).is_ok() && norm(&model.residual) < r_norm * (1.0 - 1e-4 * alpha) {
+                trial_norm = if model.assemble(false).is_ok() { norm(&model.residual) } else { f64::INFINITY };
+                if trial_norm < r_norm * (1.0 - 1e-4 * alpha) {
                     accepted = true;
                     break;
                 }
