@@ -417,7 +417,6 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                             summary.limit_points += 1;
                         }
                     }
-                    force_average.add(norm(&model.internal_force).max(norm(&model.external_force)));
                     let du: Vec<f64> =
                         model.free_dofs().iter().map(|&g| model.displacement[g] - committed_free(model, g)).collect();
                     // With continuation on, a load-controlled increment whose displacements moved
@@ -431,18 +430,12 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                                 model.rollback();
                                 summary.cut_increments += 1;
                                 cuts_since_commit += 1;
-                                crossing = Some(ArcCrossing {
-                                    ds: previous_norm * std::f64::consts::SQRT_2,
-                                    ds_initial: previous_norm * std::f64::consts::SQRT_2,
-                                    ds_max: 10.0 * previous_norm,
-                                    time_weight: previous_norm / previous.dt,
-                                    previous,
-                                    resume_after: target,
-                                });
+                                crossing = ArcCrossing::start(previous, target);
                                 continue;
                             }
                         }
                     }
+                    force_average.add(norm(&model.internal_force).max(norm(&model.external_force)));
                     let reversal = breakpoints.iter().any(|&b| (b - target).abs() <= 1e-12 * t_end.max(1.0));
                     last_converged = Some(PreviousIncrement { du: du.clone(), dt: target - t });
                     last_increment = if reversal || target <= t { None } else { Some((du, target - t)) };
@@ -582,19 +575,11 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
                     }
                     if arc_length_enabled && !arc_blocked && cuts_since_commit >= case.case.solver.arc_length_after_cuts
                     {
-                        if let Some(previous) = last_converged.clone() {
-                            let ds = norm(&previous.du);
-                            if ds > 0.0 && previous.dt > 0.0 {
-                                crossing = Some(ArcCrossing {
-                                    ds: ds * std::f64::consts::SQRT_2,
-                                    ds_initial: ds * std::f64::consts::SQRT_2,
-                                    ds_max: 10.0 * ds,
-                                    time_weight: ds / previous.dt,
-                                    previous,
-                                    resume_after: first_failed_target.unwrap_or(t),
-                                });
-                                continue;
-                            }
+                        crossing = last_converged
+                            .clone()
+                            .and_then(|previous| ArcCrossing::start(previous, first_failed_target.unwrap_or(t)));
+                        if crossing.is_some() {
+                            continue;
                         }
                     }
                     dt *= inc.cut_factor;
@@ -727,6 +712,23 @@ struct ArcCrossing {
 
 fn default_share() -> f64 {
     crate::case::InterfaceSpec::default_max_viscous_share()
+}
+
+impl ArcCrossing {
+    /// A crossing that starts from the last converged load-controlled increment `previous`:
+    /// the first arc length is that increment's length in the (du, c dt) norm with c its
+    /// displacement rate (so sqrt 2 |du|), capped at 10 |du|. None when it did not move.
+    fn start(previous: PreviousIncrement, resume_after: f64) -> Option<Self> {
+        let length = norm(&previous.du);
+        (length > 0.0 && previous.dt > 0.0).then(|| Self {
+            ds: length * std::f64::consts::SQRT_2,
+            ds_initial: length * std::f64::consts::SQRT_2,
+            ds_max: 10.0 * length,
+            time_weight: length / previous.dt,
+            previous,
+            resume_after,
+        })
+    }
 }
 
 /// Mean of the force norms of the converged increments (the Newton reference force).

@@ -31,13 +31,16 @@ fn blocks_in_series_with_an_elastic_interface_match_the_closed_form() {
     assert!(fields[0].values.iter().all(|gap| (gap - g).abs() < 1e-12), "openings {:?} vs {g}", &fields[0].values[..4]);
 }
 
-/// The assembled tangent of the cohesive elements against central differences of the residual,
-/// in the softening range of the mixed-mode bilinear law (normal opening 0.006 between onset
-/// 0.004 and failure 0.01, plus slip: the damage couples normal and shear).
-#[test]
-fn cohesive_element_tangent_matches_finite_differences_while_softening() {
+/// Assembled tangent error (vs central differences) of a cohesive case whose interface softens:
+/// the committed state is the undeformed one; then the nodes get a smooth field 1e-3 f(x) plus
+/// `jump(x)` on the cells of 'upper' (the opening of the interface).
+fn softening_tangent_error(
+    case: &str,
+    field: impl Fn(&[f64; 3], usize) -> f64,
+    jump: impl Fn(&[f64; 3]) -> Vec<f64>,
+) -> f64 {
     let (_, mut built) = stiction_tests::build_case(
-        "cases/validation/two-blocks-cohesive.toml",
+        case,
         &[
             "mesh.parameters.h=1.0",
             "interfaces.0.parameters={ G_c = 0.001, sigma_max = 0.2, penalty = 50.0, initially_bonded = 1 }",
@@ -47,16 +50,28 @@ fn cohesive_element_tangent_matches_finite_differences_while_softening() {
     m.apply_time(0.0);
     m.assemble(false).unwrap();
     m.commit();
-    // open the interface by 0.006 (softening) with some slip and a smooth field on top
-    let upper_nodes: std::collections::HashSet<usize> =
+    let dpn = m.dofs_per_node();
+    let upper: std::collections::HashSet<usize> =
         m.mesh.group_nodes(m.mesh.group("upper").unwrap()).into_iter().collect();
     for (n, x) in m.mesh.nodes.clone().iter().enumerate() {
-        let jump = if upper_nodes.contains(&n) { [0.0005, -0.0003, 0.006] } else { [0.0; 3] };
-        for c in 0..3 {
-            m.displacement[n * 3 + c] = 1e-3 * (x[0] - 0.3 * x[1] + 0.2 * x[2] * (c as f64 + 1.0)) + jump[c];
+        let j = if upper.contains(&n) { jump(x) } else { vec![0.0; dpn] };
+        for c in 0..dpn {
+            m.displacement[n * dpn + c] = 1e-3 * field(x, c) + j[c];
         }
     }
-    let err = stiction_tests::assembled_tangent_error(m, 1e-8);
+    stiction_tests::assembled_tangent_error(m, 1e-8)
+}
+
+/// The assembled tangent of the cohesive elements against central differences of the residual,
+/// in the softening range of the mixed-mode bilinear law (normal opening 0.006 between onset
+/// 0.004 and failure 0.01, plus slip: the damage couples normal and shear).
+#[test]
+fn cohesive_element_tangent_matches_finite_differences_while_softening() {
+    let err = softening_tangent_error(
+        "cases/validation/two-blocks-cohesive.toml",
+        |x, c| x[0] - 0.3 * x[1] + 0.2 * x[2] * (c as f64 + 1.0),
+        |_| vec![0.0005, -0.0003, 0.006],
+    );
     println!("cohesive elements (softening): tangent vs finite differences {err:.2e}");
     assert!(err < 1e-5, "{err}");
 }
@@ -128,29 +143,14 @@ fn axisymmetric_cylinders_with_an_elastic_interface_match_the_closed_form() {
 }
 
 /// The assembled tangent of axisymmetric cohesive elements vs central differences, softening
-/// under mixed opening (normal 0.006, radial slip 0.002).
+/// under mixed opening (normal 0.006, radial slip 0.002 r).
 #[test]
 fn axisymmetric_cohesive_tangent_matches_finite_differences_while_softening() {
-    let (_, mut built) = stiction_tests::build_case(
+    let err = softening_tangent_error(
         "cases/validation/two-discs-axisym-cohesive.toml",
-        &[
-            "mesh.parameters.h=1.0",
-            "interfaces.0.parameters={ G_c = 0.001, sigma_max = 0.2, penalty = 50.0, initially_bonded = 1 }",
-        ],
+        |x, c| x[0] + 0.4 * x[1] * (c as f64 + 1.0),
+        |x| vec![0.002 * x[0], 0.006],
     );
-    let m = &mut built.model;
-    m.apply_time(0.0);
-    m.assemble(false).unwrap();
-    m.commit();
-    let upper: std::collections::HashSet<usize> =
-        m.mesh.group_nodes(m.mesh.group("upper").unwrap()).into_iter().collect();
-    for (n, x) in m.mesh.nodes.clone().iter().enumerate() {
-        let jump = if upper.contains(&n) { [0.002 * x[0], 0.006] } else { [0.0; 2] };
-        for c in 0..2 {
-            m.displacement[n * 2 + c] = 1e-3 * (x[0] + 0.4 * x[1] * (c as f64 + 1.0)) + jump[c];
-        }
-    }
-    let err = stiction_tests::assembled_tangent_error(m, 1e-8);
     println!("axisymmetric cohesive elements (softening): tangent vs finite differences {err:.2e}");
     assert!(err < 1e-5, "{err}");
 }

@@ -32,19 +32,18 @@ fn maugis_pull_off(lambda: f64) -> f64 {
     -best
 }
 
+/// The quick resolution of cases/validation/lj-sphere.toml used here.
+const QUICK: [&str; 5] = [
+    "mesh.parameters.h_contact=2.0",
+    "mesh.parameters.r_fine=40.0",
+    "steps.0.max_increment=0.02",
+    "steps.1.max_increment=0.01",
+    "steps.1.initial_increment=0.01",
+];
+
 #[test]
 fn lennard_jones_pull_off_lies_in_the_jkr_dmt_transition_and_near_maugis() {
-    let (_, summary) = run_case(
-        "cases/validation/lj-sphere.toml",
-        &[
-            "mesh.parameters.h_contact=2.0",
-            "mesh.parameters.r_fine=40.0",
-            "steps.0.max_increment=0.02",
-            "steps.1.max_increment=0.01",
-            "steps.1.initial_increment=0.01",
-        ],
-        "lj-sphere",
-    );
+    let (_, summary) = run_case("cases/validation/lj-sphere.toml", &QUICK, "lj-sphere");
     assert_eq!(summary.status, "completed");
     let (e, nu, r, w, z0) = (410.0f64, 0.3f64, 1000.0f64, 1.0f64, 0.169f64);
     let e_star = e / (1.0 - nu * nu);
@@ -67,19 +66,9 @@ fn lennard_jones_pull_off_lies_in_the_jkr_dmt_transition_and_near_maugis() {
     assert!(summary.limit_points >= 2 && limit_points == summary.limit_points, "{events}");
     assert_eq!(i.viscous_dissipation, 0.0);
     // the same run crossing the jumps by viscous regularisation instead gives the same pull-off
-    let (_, viscous) = run_case(
-        "cases/validation/lj-sphere.toml",
-        &[
-            "mesh.parameters.h_contact=2.0",
-            "mesh.parameters.r_fine=40.0",
-            "steps.0.max_increment=0.02",
-            "steps.1.max_increment=0.01",
-            "steps.1.initial_increment=0.01",
-            "solver.continuation=\"none\"",
-            "interfaces.0.viscosity=1e-4",
-        ],
-        "lj-sphere-viscous",
-    );
+    let viscous_sets: Vec<&str> =
+        QUICK.iter().copied().chain(["solver.continuation=\"none\"", "interfaces.0.viscosity=1e-4"]).collect();
+    let (_, viscous) = run_case("cases/validation/lj-sphere.toml", &viscous_sets, "lj-sphere-viscous");
     assert_eq!(viscous.status, "completed");
     let v = &viscous.interfaces[0];
     println!(
