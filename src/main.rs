@@ -192,11 +192,19 @@ fn plugin_check(law: &str, params: &[String], config: Option<PathBuf>, gap_scale
     };
     println!("checking law '{}' (gap scale {gap_scale})", instance.name());
     let results = stiction::plugin_check::check(&instance, gap_scale);
-    let failed = results.iter().filter(|r| !r.passed).count();
+    let failed = results.iter().filter(|r| !r.passed && !r.informative).count();
+    let checks = results.iter().filter(|r| !r.informative).count();
     for r in &results {
-        println!("  {} {}: {}", if r.passed { "PASS" } else { "FAIL" }, r.name, r.detail);
+        let tag = if r.informative {
+            "INFO"
+        } else if r.passed {
+            "PASS"
+        } else {
+            "FAIL"
+        };
+        println!("  {tag} {}: {}", r.name, r.detail);
     }
-    println!("{} passed, {} failed", results.len() - failed, failed);
+    println!("{} passed, {} failed", checks - failed, failed);
     if failed == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) }
 }
 

@@ -9,7 +9,7 @@
 //! Forces: on B f = N t w with t = sum_i v_i e_i, on A the opposite; tangent
 //! dt_c / d du_e = sum_ij e_i,c (dv_i / d delta_j) e_j,e.
 
-use crate::point_law::{evaluate_point, evaluate_point_mixed};
+use crate::point_law::{evaluate_point, evaluate_point_mixed, initial_states};
 use std::collections::HashMap;
 use std::sync::Arc;
 use stiction_core::CoreError;
@@ -115,13 +115,7 @@ impl CohesiveElements {
                 }
             }
         }
-        let ns = law.n_state();
-        let mut state = vec![0.0; points.len() * ns];
-        if ns > 0 {
-            for s in state.chunks_exact_mut(ns) {
-                law.initialize_state(s);
-            }
-        }
+        let state = initial_states(law.as_ref(), points.len());
         let n = points.len();
         Ok(Self {
             name: name.to_string(),

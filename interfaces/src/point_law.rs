@@ -4,6 +4,18 @@
 use stiction_core::CoreError;
 use stiction_core::interface_law::{InterfaceLaw, LawResponse, MixedLawResponse};
 
+/// Initial states of `n_points` points (`law.n_state()` numbers each), from the law.
+pub fn initial_states(law: &dyn InterfaceLaw, n_points: usize) -> Vec<f64> {
+    let ns = law.n_state();
+    let mut state = vec![0.0; n_points * ns];
+    if ns > 0 {
+        for s in state.chunks_exact_mut(ns) {
+            law.initialize_state(s);
+        }
+    }
+    state
+}
+
 /// The law at gap `g` for point `index` (0-based) of `interface`, from its committed state
 /// (`ns` numbers per point) into the trial state.
 pub fn evaluate_point(

@@ -23,7 +23,7 @@
 //! continuous in pseudo-time. Its dissipated energy, sum zeta |k_c| (g - g_c)^2 / dt w, is
 //! accumulated and reported so it can be kept small.
 
-use crate::point_law::evaluate_point;
+use crate::point_law::{evaluate_point, initial_states};
 use crate::surface_locator::SurfaceLocator;
 use std::sync::Arc;
 use stiction_core::CoreError;
@@ -268,12 +268,7 @@ impl RigidFlat {
         reference_level: f64,
     ) -> Result<Self, CoreError> {
         let ns = law.n_state();
-        let mut state = vec![0.0; points.len() * ns];
-        if ns > 0 {
-            for s in state.chunks_exact_mut(ns) {
-                law.initialize_state(s);
-            }
-        }
+        let state = initial_states(law.as_ref(), points.len());
         let n = points.len();
         let n_fields = 4 + ns;
         Ok(Self {

@@ -211,21 +211,11 @@ unsafe extern "C" fn create<L: Law>(
         let text = if config.is_null() { "" } else { unsafe { CStr::from_ptr(config) }.to_str().unwrap_or("") };
         L::create(p, text)
     }));
-    match result {
-        Ok(Ok(law)) => {
-            // SAFETY: `instance` is a valid out-pointer.
-            unsafe { *instance = Box::into_raw(Box::new(law)) as *mut c_void };
-            STATUS_OK
-        }
-        Ok(Err(e)) => {
-            write_message(&e, message, message_len);
-            STATUS_ERROR
-        }
-        Err(p) => {
-            write_message(&format!("panic in create: {}", panic_text(p)), message, message_len);
-            STATUS_PANIC
-        }
-    }
+    let write = |law: L| {
+        // SAFETY: `instance` is a valid out-pointer.
+        unsafe { *instance = Box::into_raw(Box::new(law)) as *mut c_void };
+    };
+    finish("create", result, write, message, message_len)
 }
 
 unsafe extern "C" fn destroy<L: Law>(instance: *mut c_void) {
@@ -275,8 +265,10 @@ unsafe fn with_states<L: Law, R>(
     }))
 }
 
-/// Writes an evaluation's outcome: the response through `write`, or the error or panic text.
+/// Writes the outcome of the call `what`: the result through `write`, or the error or panic
+/// text into the caller's message buffer; returns the status.
 fn finish<R>(
+    what: &str,
     result: std::thread::Result<Result<R, String>>,
     write: impl FnOnce(R),
     message: *mut c_char,
@@ -292,7 +284,7 @@ fn finish<R>(
             STATUS_ERROR
         }
         Err(p) => {
-            write_message(&format!("panic in evaluate: {}", panic_text(p)), message, message_len);
+            write_message(&format!("panic in {what}: {}", panic_text(p)), message, message_len);
             STATUS_PANIC
         }
     }
@@ -315,7 +307,7 @@ unsafe extern "C" fn evaluate<L: Law>(
         // SAFETY: `response` is a valid out-pointer.
         unsafe { *response = AbiResponse { value, tangent, in_contact: in_contact as u32, area } };
     };
-    finish(result, write, message, message_len)
+    finish("evaluate", result, write, message, message_len)
 }
 
 unsafe extern "C" fn evaluate_mixed<L: Law>(
@@ -337,7 +329,7 @@ unsafe extern "C" fn evaluate_mixed<L: Law>(
         // SAFETY: `response` is a valid out-pointer.
         unsafe { *response = AbiMixedResponse { value, tangent: flat, in_contact: in_contact as u32, area } };
     };
-    finish(result, write, message, message_len)
+    finish("evaluate", result, write, message, message_len)
 }
 
 /// Reads a C string from a descriptor field ("" when null).
