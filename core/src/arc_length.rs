@@ -72,10 +72,11 @@ pub fn solve_arc_length_increment(
     let n = model.n_free();
     let mut report = IncrementReport::default();
     let h = rate_step;
-    let u0: Vec<f64> = model.free_dofs().iter().map(|&g| model.displacement[g]).collect();
+    let free = model.free_dofs().to_vec();
+    let u0: Vec<f64> = free.iter().map(|&g| model.displacement[g]).collect();
+    // u = u0 + du on the free dofs, prescribed values and loads at time t
     let set_state = |model: &mut Model, du: &[f64], t: f64| {
         model.apply_time(t);
-        let free = model.free_dofs().to_vec();
         for (k, &g) in free.iter().enumerate() {
             model.displacement[g] = u0[k] + du[k];
         }
