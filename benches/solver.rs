@@ -7,7 +7,7 @@ use std::sync::Arc;
 use std::time::Instant;
 use stiction_core::amplitude::Amplitude;
 use stiction_core::element::Kinematics;
-use stiction_core::linear_solver::SparseSolver;
+use stiction_core::linear_solver::{FaerCholesky, LinearSolver};
 use stiction_core::model::{ElementSet, Model, Prescribed};
 use stiction_elements::{QuadratureChoice, SolidKernel};
 use stiction_materials::J2Plasticity;
@@ -52,7 +52,7 @@ fn main() {
     }
     model.assemble(true).unwrap();
     let t = Instant::now();
-    let mut solver = SparseSolver::new(model.pattern()).unwrap();
+    let mut solver = FaerCholesky::analyse(model.pattern()).unwrap();
     let t_symbolic = t.elapsed().as_secs_f64();
     let mut t_numeric = f64::INFINITY;
     let mut kind = None;

@@ -1,19 +1,21 @@
 //! Stiction: implicit finite elements for adhesive and cohesive contact.
 //!
 //! This crate composes a problem from a case file: [`case`] defines and validates the TOML
-//! schema (with `--set` overrides), [`build`] turns a case into a core [`Model`], [`run`] drives
-//! the steps and writes `history.csv`, VTK and `summary.json`, and [`fields`] derives output
-//! fields (nodal stresses, von Mises, material outputs).
+//! schema (with `--set` overrides) and validates it, [`build`] turns a case into a core
+//! [`Model`] and its step plans, [`run`] sets up the output observers and hands the run to the
+//! core's step driver, [`sweep`] drives several runs, and [`report`] prints a run's summary.
 //!
 //! [`Model`]: stiction_core::model::Model
 
 pub mod build;
 pub mod case;
 pub mod error;
-pub mod fields;
 pub mod laws;
 pub mod plots;
 pub mod plugin_check;
+pub mod progress;
+pub mod report;
 pub mod run;
+pub mod sweep;
 
 pub use error::StictionError;

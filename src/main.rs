@@ -18,16 +18,7 @@ struct Cli {
 enum Command {
     /// Solve a case: writes history.csv (one row per converged increment, flushed as it goes),
     /// VTK files (<name>_NNNNN.vtu + <name>.pvd for ParaView) and summary.json.
-    ///
-    /// Defaults (case file keys): analysis = "3d"; mesh.order = 2; mesh.size_factor = 1;
-    /// sections[].quadrature = "standard" (tet10: 4 points); boundary amplitude = "ramp"
-    /// (0 -> 1 over t in [0, 1]); steps[].initial_increment = step/10, min_increment =
-    /// 1e-6 step, max_increment = step, output_every = 1; solver.max_iterations = 25,
-    /// tol_residual = 1e-8, tol_displacement = 1e-6, line_search = true, threads = 0 (all
-    /// cores), cut_factor = 0.25, growth_factor = 1.5, continuation = "none" (or
-    /// "arc-length"), arc_length_after_cuts = 2; interfaces[].viscosity = 0,
-    /// max_viscous_share = 0.05, quadrature_order = 0, initial_gap = 0; output.directory =
-    /// out/<name>, output.vtk = true.
+    #[command(after_help = stiction::case::defaults_help())]
     Run {
         /// The case file (TOML).
         case: PathBuf,
@@ -276,44 +267,9 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Run { case, out, sets, quiet } => (|| {
             let options = RunOptions { out, progress: !quiet && std::io::stderr().is_terminal() };
-            for summary in stiction::run::run_sweep(&case, &sets, &options)? {
-                println!(
-                    "{}: {} increments ({} cut{}), {} Newton iterations, {:.2} s; {} free dofs; output in {}",
-                    summary.case,
-                    summary.increments,
-                    summary.cut_increments,
-                    if summary.arc_length_increments > 0 {
-                        format!(
-                            "; {} by arc length through {} limit points",
-                            summary.arc_length_increments, summary.limit_points
-                        )
-                    } else {
-                        String::new()
-                    },
-                    summary.newton_iterations,
-                    summary.wall_seconds,
-                    summary.n_free_dofs,
-                    summary.output_directory.display()
-                );
-                // forces in the case's units (positive compressive, negative adhesive)
-                for i in &summary.interfaces {
-                    if i.kind == "cohesive" {
-                        println!(
-                            "  {}: most tensile force {:.4e}, most compressive {:.4e}; max contact area {:.4e}",
-                            i.name, i.pull_off_force, i.max_force, i.max_contact_area
-                        );
-                    } else {
-                        println!(
-                            "  {}: max force {:.4e} at approach {:.4}; pull-off {:.4e} at {:.4}; max real area {:.4e}; {} in contact at max",
-                            i.name,
-                            i.max_force,
-                            i.approach_at_max_force,
-                            i.pull_off_force,
-                            i.approach_at_pull_off,
-                            i.max_contact_area,
-                            i.n_contact_at_max_force
-                        );
-                    }
+            for summary in stiction::sweep::run_sweep(&case, &sets, &options)? {
+                for line in stiction::report::summary_lines(&summary) {
+                    println!("{line}");
                 }
             }
             Ok(())

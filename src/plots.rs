@@ -202,3 +202,42 @@ pub fn plot_calibration(
     }
     Ok(())
 }
+
+/// Plots a run's force and area against approach when it ends (runs with an interface), as an
+/// observer of the run. A plot that cannot be drawn is a warning, not a failed run.
+pub struct RunPlots {
+    directory: std::path::PathBuf,
+    name: String,
+}
+
+impl RunPlots {
+    pub fn new(directory: &Path, name: &str) -> Self {
+        Self { directory: directory.to_path_buf(), name: name.to_string() }
+    }
+}
+
+impl stiction_core::record::Observer for RunPlots {
+    fn committed(
+        &mut self,
+        _model: &stiction_core::model::Model,
+        _increment: &stiction_core::record::CommittedIncrement,
+    ) -> stiction_core::error::Result<()> {
+        Ok(())
+    }
+
+    fn finished(
+        &mut self,
+        _model: &stiction_core::model::Model,
+        summary: &stiction_core::record::RunSummary,
+    ) -> stiction_core::error::Result<()> {
+        if summary.interfaces.is_empty() {
+            return Ok(());
+        }
+        if let Some(curve) = read_history(&self.directory.join("history.csv"), &self.name) {
+            if let Err(e) = plot_curves(&self.directory, "", &self.name, &[curve]) {
+                eprintln!("warning: plots of '{}' not written: {e}", self.name);
+            }
+        }
+        Ok(())
+    }
+}

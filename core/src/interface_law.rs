@@ -5,14 +5,11 @@
 //! positive when it pushes the surfaces apart (compressive contact), negative when it pulls them
 //! together (adhesion). State follows the same trial/commit/roll-back lifecycle as materials.
 
-/// What the law's value means.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LawKind {
-    /// A traction (force per area), integrated over the interface surface.
-    TractionPerArea,
-    /// A force per discrete point (e.g. one nano-asperity).
-    ForcePerPoint,
-}
+/// The law's kind and its responses are the plugin SDK's own types (one definition for the C
+/// ABI, the SDK and the host): `LawResponse` is [`stiction_law_sdk::Response`] and
+/// `MixedLawResponse` is [`stiction_law_sdk::MixedResponse`] (value_i = -d psi / d gap_i in the
+/// point's local frame, tangent[i][j] = d value_i / d gap_j).
+pub use stiction_law_sdk::{LawKind, MixedResponse as MixedLawResponse, Response as LawResponse};
 
 /// A parameter a law accepts, so hosts can validate case files generically.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,40 +22,6 @@ pub struct ParameterSpec {
     /// Inclusive bounds.
     pub min: f64,
     pub max: f64,
-}
-
-/// The result of one evaluation.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct LawResponse {
-    /// Normal traction or force (positive pushes apart).
-    pub value: f64,
-    /// d value / d gap.
-    pub tangent: f64,
-    /// Whether the point counts as in contact.
-    pub in_contact: bool,
-    /// Contact area carried by this point (force-per-point laws; 0 for traction laws, whose
-    /// area is the integration weight of the point when in contact).
-    pub area: f64,
-}
-
-/// The result of one mixed-mode evaluation, in the interface point's local frame (normal,
-/// tangential 1, tangential 2): value_i is the force per area on the moving side along axis i
-/// (value_i = -d psi / d gap_i for a law with energy psi), tangent[i][j] = d value_i / d gap_j.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct MixedLawResponse {
-    pub value: [f64; 3],
-    pub tangent: [[f64; 3]; 3],
-    pub in_contact: bool,
-    pub area: f64,
-}
-
-impl From<LawResponse> for MixedLawResponse {
-    /// A normal-only law seen as mixed mode: no tangential value, no coupling.
-    fn from(r: LawResponse) -> Self {
-        let mut tangent = [[0.0; 3]; 3];
-        tangent[0][0] = r.tangent;
-        Self { value: [r.value, 0.0, 0.0], tangent, in_contact: r.in_contact, area: r.area }
-    }
 }
 
 /// Why a law could not be evaluated.
@@ -95,7 +58,7 @@ pub trait InterfaceLaw: Send + Sync {
         state_committed: &[f64],
         state_trial: &mut [f64],
     ) -> Result<MixedLawResponse, LawError> {
-        self.evaluate(gap[0], state_committed, state_trial).map(MixedLawResponse::from)
+        self.evaluate(gap[0], state_committed, state_trial).map(MixedLawResponse::normal_only)
     }
 }
 

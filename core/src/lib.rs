@@ -6,12 +6,15 @@
 //! * [`sparse`] and [`linear_solver`]: a sparsity pattern built once, element-to-slot maps, and a
 //!   faer sparse factorization whose symbolic part is computed once per topology.
 //! * [`model`]: degrees of freedom, constraints, loads and parallel assembly.
-//! * [`newton`]: the Newton-Raphson driver with line search and step cutting.
+//! * [`problem`]: the nonlinear problem (residual, tangent, trial/commit/roll-back) that
+//!   [`nonlinear`] solvers (Newton, arc length) drive with a [`linear_solver`].
+//! * [`path`]: path control (load control with cutting, arc-length crossings) and the step
+//!   driver that runs a whole analysis, notifying [`record`] observers of every committed
+//!   increment (history.csv, events.csv, VTK series, summary.json).
 //! * [`amplitude`]: piecewise-linear histories in pseudo-time.
 //! * [`output`]: VTK XML (`.vtu` + `.pvd`) and CSV writers, each file written atomically.
 
 pub mod amplitude;
-pub mod arc_length;
 pub mod element;
 pub mod error;
 pub mod interface_law;
@@ -19,10 +22,15 @@ pub mod linear_solver;
 pub mod material;
 pub mod mesh;
 pub mod model;
-pub mod newton;
+pub mod nonlinear;
+pub mod observables;
 pub mod output;
+pub mod path;
+pub mod problem;
 pub mod quadrature;
+pub mod record;
 pub mod sparse;
+pub mod vector;
 pub mod voigt;
 
 pub use error::CoreError;

@@ -11,6 +11,7 @@ use crate::error::{CoreError, Result};
 use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::sparse::{NO_SLOT, SparsityPattern};
+use crate::vector::norm;
 use crate::voigt::Stress;
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -73,6 +74,124 @@ impl ElementSet {
     }
 }
 
+impl ElementSet {
+    /// Adds the set's internal force to `force` (all dofs) and its tangent to `values` (on the
+    /// pattern, through the slot maps); cells are split over the rayon threads, each with its
+    /// own accumulators, when the set is large.
+    fn assemble(
+        &mut self,
+        nodes: &[[f64; 3]],
+        displacement: &[f64],
+        dpn: usize,
+        nnz: usize,
+        force_total: &mut [f64],
+        mut values_total: Option<&mut [f64]>,
+    ) -> Result<()> {
+        let with_tangent = values_total.is_some();
+        let n_dofs = displacement.len();
+        let threads = rayon::current_num_threads().max(1);
+        let n_cells = self.n_cells();
+        let nn = self.kernel.n_nodes();
+        let nd = self.kernel.n_dofs();
+        let nq = self.kernel.n_points();
+        let ns = self.material.n_state();
+        let n_chunks = if n_cells >= 512 { threads } else { 1 };
+        let per_chunk = n_cells.div_ceil(n_chunks).max(1);
+        // Split the trial state and stress arrays by cell ranges (works for ns == 0 too).
+        let mut jobs = Vec::with_capacity(n_chunks);
+        let mut state_rest: &mut [f64] = &mut self.state_trial;
+        let mut stress_rest: &mut [Stress] = &mut self.stress;
+        let mut first = 0;
+        while first < n_cells {
+            let last = (first + per_chunk).min(n_cells);
+            let (s, r) = std::mem::take(&mut state_rest).split_at_mut((last - first) * nq * ns);
+            state_rest = r;
+            let (t, r2) = std::mem::take(&mut stress_rest).split_at_mut((last - first) * nq);
+            stress_rest = r2;
+            jobs.push((first, last, s, t));
+            first = last;
+        }
+        let kernel = self.kernel.as_ref();
+        let material = self.material.as_ref();
+        let connectivity = &self.connectivity;
+        let committed = &self.state_committed;
+        let slots = &self.slots;
+        let set_name = &self.name;
+        let single = jobs.len() == 1;
+        let run = |(first, last, state_trial, stress): (usize, usize, &mut [f64], &mut [Stress]),
+                   force: &mut [f64],
+                   values: &mut [f64]|
+         -> Result<()> {
+            let mut coords = vec![[0.0; 3]; nn];
+            let mut u = vec![0.0; nd];
+            let mut fe = vec![0.0; nd];
+            let mut ke = vec![0.0; nd * nd];
+            for cell in first..last {
+                let conn = &connectivity[cell * nn..(cell + 1) * nn];
+                for (a, &node) in conn.iter().enumerate() {
+                    coords[a] = nodes[node];
+                    for c in 0..dpn {
+                        u[a * dpn + c] = displacement[node * dpn + c];
+                    }
+                }
+                let local = cell - first;
+                let buffers = ElementBuffers {
+                    force: &mut fe,
+                    stiffness: if with_tangent { Some(&mut ke) } else { None },
+                    stress: &mut stress[local * nq..(local + 1) * nq],
+                };
+                kernel
+                    .evaluate(
+                        &coords,
+                        &u,
+                        material,
+                        &committed[cell * nq * ns..(cell + 1) * nq * ns],
+                        &mut state_trial[local * nq * ns..(local + 1) * nq * ns],
+                        buffers,
+                    )
+                    .map_err(|f| element_error(set_name, material.name(), cell, f))?;
+                for (a, &node) in conn.iter().enumerate() {
+                    for c in 0..dpn {
+                        force[node * dpn + c] += fe[a * dpn + c];
+                    }
+                }
+                if with_tangent {
+                    let cell_slots = &slots[cell * nd * nd..(cell + 1) * nd * nd];
+                    for (k, &s) in cell_slots.iter().enumerate() {
+                        if s != NO_SLOT {
+                            values[s as usize] += ke[k];
+                        }
+                    }
+                }
+            }
+            Ok(())
+        };
+        if single {
+            let job = jobs.pop().unwrap();
+            run(job, force_total, values_total.as_deref_mut().unwrap_or(&mut []))?;
+        } else {
+            let partials: Vec<Result<(Vec<f64>, Vec<f64>)>> = jobs
+                .into_par_iter()
+                .map(|job| {
+                    let mut force = vec![0.0; n_dofs];
+                    let mut values = if with_tangent { vec![0.0; nnz] } else { Vec::new() };
+                    run(job, &mut force, &mut values).map(|_| (force, values))
+                })
+                .collect();
+            for part in partials {
+                let (force, values) = part?;
+                for (a, b) in force_total.iter_mut().zip(&force) {
+                    *a += b;
+                }
+                if let Some(total) = values_total.as_deref_mut() {
+                    total.par_iter_mut().zip(values.par_iter()).for_each(|(a, b)| *a += b);
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Something besides the solid elements that adds forces and stiffness: interfaces, contact.
 pub trait Contribution: Send {
     fn name(&self) -> &str;
@@ -95,9 +214,10 @@ pub trait Contribution: Send {
     fn amplitudes(&self) -> Vec<Arc<Amplitude>> {
         Vec::new()
     }
-    /// Named scalars for `history.csv` at the committed state.
-    fn history(&self) -> Vec<(String, f64)> {
-        Vec::new()
+    /// Interface quantities at the committed state (for `history.csv`, the summary and the
+    /// events); None for contributions that are not interfaces.
+    fn observables(&self) -> Option<crate::observables::InterfaceObservables> {
+        None
     }
     /// Points with fields at the committed state, written as VTK vertices (e.g. interface
     /// integration points with gap and traction).
@@ -314,116 +434,21 @@ impl Model {
     /// displacement; material states are written to the trial copies.
     pub fn assemble(&mut self, with_tangent: bool) -> Result<AssemblyStats> {
         let start = std::time::Instant::now();
-        let dpn = self.dofs_per_node();
         let pattern = self.pattern.as_ref().expect("Model::finalize must be called before assembly");
-        let nnz = pattern.nnz();
-        let n_dofs = self.displacement.len();
         self.internal_force.fill(0.0);
         if with_tangent {
             self.tangent_values.fill(0.0);
         }
-        let threads = rayon::current_num_threads().max(1);
+        let nodes = &self.mesh.nodes;
         for set in &mut self.sets {
-            let n_cells = set.n_cells();
-            let nn = set.kernel.n_nodes();
-            let nd = set.kernel.n_dofs();
-            let nq = set.kernel.n_points();
-            let ns = set.material.n_state();
-            let n_chunks = if n_cells >= 512 { threads } else { 1 };
-            let per_chunk = n_cells.div_ceil(n_chunks).max(1);
-            // Split the trial state and stress arrays by cell ranges (works for ns == 0 too).
-            let mut jobs = Vec::with_capacity(n_chunks);
-            let mut state_rest: &mut [f64] = &mut set.state_trial;
-            let mut stress_rest: &mut [Stress] = &mut set.stress;
-            let mut first = 0;
-            while first < n_cells {
-                let last = (first + per_chunk).min(n_cells);
-                let (s, r) = std::mem::take(&mut state_rest).split_at_mut((last - first) * nq * ns);
-                state_rest = r;
-                let (t, r2) = std::mem::take(&mut stress_rest).split_at_mut((last - first) * nq);
-                stress_rest = r2;
-                jobs.push((first, last, s, t));
-                first = last;
-            }
-            let kernel = set.kernel.as_ref();
-            let material = set.material.as_ref();
-            let connectivity = &set.connectivity;
-            let committed = &set.state_committed;
-            let slots = &set.slots;
-            let nodes = &self.mesh.nodes;
-            let displacement = &self.displacement;
-            let set_name = &set.name;
-            let single = jobs.len() == 1;
-            let run = |(first, last, state_trial, stress): (usize, usize, &mut [f64], &mut [Stress]),
-                       force: &mut [f64],
-                       values: &mut [f64]|
-             -> Result<()> {
-                let mut coords = vec![[0.0; 3]; nn];
-                let mut u = vec![0.0; nd];
-                let mut fe = vec![0.0; nd];
-                let mut ke = vec![0.0; nd * nd];
-                for cell in first..last {
-                    let conn = &connectivity[cell * nn..(cell + 1) * nn];
-                    for (a, &node) in conn.iter().enumerate() {
-                        coords[a] = nodes[node];
-                        for c in 0..dpn {
-                            u[a * dpn + c] = displacement[node * dpn + c];
-                        }
-                    }
-                    let local = cell - first;
-                    let buffers = ElementBuffers {
-                        force: &mut fe,
-                        stiffness: if with_tangent { Some(&mut ke) } else { None },
-                        stress: &mut stress[local * nq..(local + 1) * nq],
-                    };
-                    kernel
-                        .evaluate(
-                            &coords,
-                            &u,
-                            material,
-                            &committed[cell * nq * ns..(cell + 1) * nq * ns],
-                            &mut state_trial[local * nq * ns..(local + 1) * nq * ns],
-                            buffers,
-                        )
-                        .map_err(|f| element_error(set_name, material.name(), cell, f))?;
-                    for (a, &node) in conn.iter().enumerate() {
-                        for c in 0..dpn {
-                            force[node * dpn + c] += fe[a * dpn + c];
-                        }
-                    }
-                    if with_tangent {
-                        let cell_slots = &slots[cell * nd * nd..(cell + 1) * nd * nd];
-                        for (k, &s) in cell_slots.iter().enumerate() {
-                            if s != NO_SLOT {
-                                values[s as usize] += ke[k];
-                            }
-                        }
-                    }
-                }
-                Ok(())
-            };
-            if single {
-                let job = jobs.pop().unwrap();
-                run(job, &mut self.internal_force, &mut self.tangent_values)?;
-            } else {
-                let partials: Vec<Result<(Vec<f64>, Vec<f64>)>> = jobs
-                    .into_par_iter()
-                    .map(|job| {
-                        let mut force = vec![0.0; n_dofs];
-                        let mut values = if with_tangent { vec![0.0; nnz] } else { Vec::new() };
-                        run(job, &mut force, &mut values).map(|_| (force, values))
-                    })
-                    .collect();
-                for part in partials {
-                    let (force, values) = part?;
-                    for (a, b) in self.internal_force.iter_mut().zip(&force) {
-                        *a += b;
-                    }
-                    if with_tangent {
-                        self.tangent_values.par_iter_mut().zip(values.par_iter()).for_each(|(a, b)| *a += b);
-                    }
-                }
-            }
+            set.assemble(
+                nodes,
+                &self.displacement,
+                self.kinematics.dofs_per_node(),
+                pattern.nnz(),
+                &mut self.internal_force,
+                with_tangent.then_some(&mut self.tangent_values[..]),
+            )?;
         }
         // Interfaces and other contributions.
         let free_index = &self.free_index;
@@ -533,5 +558,55 @@ fn element_error(set: &str, material: &str, cell: usize, failure: ElementFailure
         ElementFailure::BadJacobian { point, det } => CoreError::Invalid(format!(
             "element {cell} of set '{set}' is inverted or degenerate: Jacobian determinant {det:.3e} at point {point}"
         )),
+    }
+}
+
+impl crate::problem::NonlinearProblem for Model {
+    fn n_free(&self) -> usize {
+        self.free_dofs.len()
+    }
+    fn pattern(&self) -> &SparsityPattern {
+        Model::pattern(self)
+    }
+    fn set_time(&mut self, t: f64) {
+        self.apply_time(t);
+    }
+    fn time(&self) -> f64 {
+        self.time
+    }
+    fn assemble(&mut self, with_tangent: bool) -> Result<()> {
+        Model::assemble(self, with_tangent).map(|_| ())
+    }
+    fn residual(&self) -> &[f64] {
+        &self.residual
+    }
+    fn tangent(&self) -> &[f64] {
+        &self.tangent_values
+    }
+    fn force_norm(&self) -> f64 {
+        norm(&self.internal_force).max(norm(&self.external_force))
+    }
+    fn solution(&self) -> &[f64] {
+        &self.displacement
+    }
+    fn add_to_free(&mut self, du: &[f64], alpha: f64) {
+        self.update_free(du, alpha);
+    }
+    fn free_values(&self) -> Vec<f64> {
+        self.free_dofs.iter().map(|&g| self.displacement[g]).collect()
+    }
+    fn set_free_values(&mut self, values: &[f64]) {
+        for (k, &g) in self.free_dofs.iter().enumerate() {
+            self.displacement[g] = values[k];
+        }
+    }
+    fn increment_since_commit(&self) -> Vec<f64> {
+        self.free_dofs.iter().map(|&g| self.displacement[g] - self.displacement_committed[g]).collect()
+    }
+    fn commit(&mut self) {
+        Model::commit(self);
+    }
+    fn rollback(&mut self) {
+        Model::rollback(self);
     }
 }

@@ -17,6 +17,7 @@ use stiction_core::element::Kinematics;
 use stiction_core::interface_law::{InterfaceLaw, LawKind};
 use stiction_core::mesh::Mesh;
 use stiction_core::model::Contribution;
+use stiction_core::observables::InterfaceObservables;
 use stiction_core::output::vtk::Field;
 use stiction_elements::FaceIntegrator;
 
@@ -247,9 +248,15 @@ impl Contribution for CohesiveElements {
         self.state_trial.copy_from_slice(&self.state_committed);
     }
 
-    fn history(&self) -> Vec<(String, f64)> {
+    fn observables(&self) -> Option<InterfaceObservables> {
         let [force, area, count] = self.committed_summary;
-        vec![("force".into(), force), ("contact_area".into(), area), ("n_contact".into(), count)]
+        Some(InterfaceObservables {
+            approach: None,
+            force,
+            contact_area: area,
+            n_contact: count as usize,
+            viscous_dissipation: None,
+        })
     }
 
     fn point_output(&self) -> Option<(Vec<[f64; 3]>, Vec<Field>)> {

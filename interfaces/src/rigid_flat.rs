@@ -32,6 +32,7 @@ use stiction_core::element::Kinematics;
 use stiction_core::interface_law::{InterfaceLaw, LawKind};
 use stiction_core::mesh::Mesh;
 use stiction_core::model::Contribution;
+use stiction_core::observables::InterfaceObservables;
 use stiction_core::output::vtk::Field;
 use stiction_elements::FaceIntegrator;
 
@@ -422,15 +423,15 @@ impl Contribution for RigidFlat {
         self.state_trial.copy_from_slice(&self.state_committed);
     }
 
-    fn history(&self) -> Vec<(String, f64)> {
+    fn observables(&self) -> Option<InterfaceObservables> {
         let [approach, force, area, count] = self.committed_summary;
-        vec![
-            ("approach".into(), approach),
-            ("force".into(), force),
-            ("contact_area".into(), area),
-            ("n_contact".into(), count),
-            ("viscous_dissipation".into(), self.viscous_committed),
-        ]
+        Some(InterfaceObservables {
+            approach: Some(approach),
+            force,
+            contact_area: area,
+            n_contact: count as usize,
+            viscous_dissipation: Some(self.viscous_committed),
+        })
     }
 
     fn point_output(&self) -> Option<(Vec<[f64; 3]>, Vec<Field>)> {

@@ -2,11 +2,14 @@
 //! every default is stated here and in `stiction run --help`.
 
 pub mod overrides;
+mod validate;
 
 use crate::error::{Result, StictionError};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use stiction_core::nonlinear::NewtonSettings;
+use stiction_core::path::Incrementation;
 
 /// A whole case.
 #[derive(Debug, Clone, Deserialize)]
@@ -40,9 +43,19 @@ pub struct Case {
     pub solver: SolverSpec,
     #[serde(default)]
     pub output: OutputSpec,
+    /// The units the case's numbers are in (reports only; the solver is unit-agnostic).
+    pub units: Option<UnitsSpec>,
     /// Run the case once per value of one key (e.g. several maximum approaches); each run gets
     /// its own folder and the histories a combined plot.
     pub sweep: Option<SweepSpec>,
+}
+
+/// The units of a case's numbers, e.g. length = "nm", force = "nN" (the Ru cases).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UnitsSpec {
+    pub length: String,
+    pub force: String,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -290,7 +303,7 @@ pub struct SolverSpec {
     #[serde(default = "default_tol_u")]
     pub tol_displacement: f64,
     /// Backtracking line search (default true).
-    #[serde(default = "yes")]
+    #[serde(default = "default_line_search")]
     pub line_search: bool,
     /// Assembly threads; 0 = all cores (default 0).
     #[serde(default)]
@@ -332,8 +345,11 @@ impl InterfaceSpec {
     }
 }
 
+/// Default of `arc_length_after_cuts`.
+pub const DEFAULT_ARC_LENGTH_AFTER_CUTS: usize = 2;
+
 fn default_arc_length_after_cuts() -> usize {
-    2
+    DEFAULT_ARC_LENGTH_AFTER_CUTS
 }
 
 impl Default for SolverSpec {
@@ -342,23 +358,50 @@ impl Default for SolverSpec {
     }
 }
 
+// The solver defaults are the core's (one place for each fact).
 fn default_iterations() -> usize {
-    25
+    NewtonSettings::default().max_iterations
 }
 fn default_tol_r() -> f64 {
-    1e-8
+    NewtonSettings::default().tol_residual
 }
 fn default_tol_u() -> f64 {
-    1e-6
+    NewtonSettings::default().tol_displacement
 }
 fn yes() -> bool {
     true
 }
+fn default_line_search() -> bool {
+    NewtonSettings::default().line_search
+}
 fn default_cut() -> f64 {
-    0.25
+    Incrementation::DEFAULT_CUT_FACTOR
 }
 fn default_growth() -> f64 {
-    1.5
+    Incrementation::DEFAULT_GROWTH_FACTOR
+}
+
+/// The defaults of the case keys that have one, as `stiction run --help` lists them.
+pub fn defaults_help() -> String {
+    let n = NewtonSettings::default();
+    format!(
+        "Defaults (case file keys): analysis = \"3d\"; mesh.order = 2; mesh.size_factor = 1; \
+         sections[].quadrature = \"standard\" (tet10: 4 points); boundary amplitude = \"ramp\" \
+         (0 -> 1 over t in [0, 1]); steps[].initial_increment = step/10, min_increment = 1e-6 step, \
+         max_increment = step, output_every = 1; solver.max_iterations = {}, tol_residual = {:e}, \
+         tol_displacement = {:e}, line_search = {}, threads = 0 (all cores), cut_factor = {}, \
+         growth_factor = {}, continuation = \"none\" (or \"arc-length\"), arc_length_after_cuts = {}; \
+         interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
+         output.directory = out/<name>, output.vtk = true.",
+        n.max_iterations,
+        n.tol_residual,
+        n.tol_displacement,
+        n.line_search,
+        Incrementation::DEFAULT_CUT_FACTOR,
+        Incrementation::DEFAULT_GROWTH_FACTOR,
+        DEFAULT_ARC_LENGTH_AFTER_CUTS,
+        InterfaceSpec::default_max_viscous_share(),
+    )
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -395,7 +438,8 @@ impl LoadedCase {
     }
 }
 
-/// Reads a case file, applies `--set key=value` overrides and checks the schema.
+/// Reads a case file, applies `--set key=value` overrides, checks the schema and validates the
+/// numbers (the same checks for `stiction check` and `stiction run`).
 pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase> {
     let bad = |message: String| StictionError::Case { path: path.to_path_buf(), message };
     let text = std::fs::read_to_string(path).map_err(|e| bad(format!("cannot read it: {e}")))?;
@@ -410,5 +454,7 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase> {
     };
     let name =
         case.name.clone().unwrap_or_else(|| path.file_stem().and_then(|s| s.to_str()).unwrap_or("case").to_string());
-    Ok(LoadedCase { case, path: path.to_path_buf(), name })
+    let loaded = LoadedCase { case, path: path.to_path_buf(), name };
+    validate::validate(&loaded)?;
+    Ok(loaded)
 }

@@ -9,10 +9,10 @@ use stiction::case;
 use stiction::run::{RunOptions, RunSummary, run_model};
 use stiction_core::amplitude::Amplitude;
 use stiction_core::element::Kinematics;
-use stiction_core::linear_solver::SparseSolver;
+use stiction_core::linear_solver::{FaerCholesky, LinearSolver};
 use stiction_core::mesh::Mesh;
 use stiction_core::model::{Model, Prescribed};
-use stiction_core::newton::{IncrementReport, NewtonSettings, ReferenceScales, solve_increment};
+use stiction_core::nonlinear::{IncrementReport, NewtonSettings, ReferenceScales, solve_increment};
 use stiction_core::quadrature::QuadratureRule;
 use stiction_elements::shape;
 
@@ -72,7 +72,7 @@ pub fn prescribe_where(
 /// Finalizes the model and solves equilibrium at t = 1 (amplitude "ramp" at full value).
 pub fn solve_at_full_load(model: &mut Model) -> IncrementReport {
     model.finalize().unwrap();
-    let mut solver = SparseSolver::new(model.pattern()).unwrap();
+    let mut solver = FaerCholesky::analyse(model.pattern()).unwrap();
     let settings = NewtonSettings { tol_residual: 1e-10, ..NewtonSettings::default() };
     let report = solve_increment(model, &mut solver, 1.0, &settings, ReferenceScales::default())
         .unwrap_or_else(|e| panic!("{e}"));

@@ -96,7 +96,7 @@ fn a_sweep_runs_each_value_in_its_own_folder_with_combined_plots() {
     .map(|s| s.to_string())
     .collect();
     let options = stiction::run::RunOptions { out: Some(out.clone()), progress: false };
-    let summaries = stiction::run::run_sweep(&case, &sets, &options).unwrap();
+    let summaries = stiction::sweep::run_sweep(&case, &sets, &options).unwrap();
     assert_eq!(summaries.len(), 2);
     // the second run presses twice as far: Hertz F ~ d^1.5 -> ratio 2^1.5 = 2.83 (within 5%)
     let ratio = summaries[1].interfaces[0].max_force / summaries[0].interfaces[0].max_force;

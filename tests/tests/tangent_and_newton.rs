@@ -4,9 +4,9 @@
 
 use std::sync::Arc;
 use stiction_core::element::Kinematics;
-use stiction_core::linear_solver::SparseSolver;
+use stiction_core::linear_solver::{FaerCholesky, LinearSolver};
 use stiction_core::model::Model;
-use stiction_core::newton::{NewtonSettings, ReferenceScales, solve_increment};
+use stiction_core::nonlinear::{NewtonSettings, ReferenceScales, solve_increment};
 use stiction_materials::J2Plasticity;
 use stiction_tests::*;
 
@@ -76,7 +76,7 @@ fn newton_converges_quadratically_on_a_plastic_problem() {
     prescribe_where(&mut model, |x| x[2] < 1e-12, |_| [0.0; 3]);
     prescribe_where(&mut model, |x| (x[2] - 1.0).abs() < 1e-12, |_| [0.02, 0.01, -0.004]);
     model.finalize().unwrap();
-    let mut solver = SparseSolver::new(model.pattern()).unwrap();
+    let mut solver = FaerCholesky::analyse(model.pattern()).unwrap();
     let settings = NewtonSettings { tol_residual: 1e-12, tol_displacement: 1e-12, ..NewtonSettings::default() };
     let mut sequences = Vec::new();
     for t in [0.25, 0.5, 0.75, 1.0] {

@@ -2,6 +2,7 @@
 //! interrupted run keeps every converged step.
 
 use crate::error::{CoreError, Result};
+use crate::observables::Value;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -36,13 +37,16 @@ impl HistoryWriter {
         self.file.get_ref().sync_data().map_err(err)
     }
 
-    /// Appends one row (same length as the header) and flushes it to disk.
-    pub fn append(&mut self, row: &[f64]) -> Result<()> {
-        assert_eq!(row.len(), self.columns.len(), "history row does not match its header");
-        let err = |source| CoreError::Write { path: self.path.clone(), source };
-        let line: Vec<String> = row.iter().map(|v| format!("{v:.10e}")).collect();
-        writeln!(self.file, "{}", line.join(",")).map_err(err)?;
-        self.file.flush().map_err(err)?;
-        self.file.get_ref().sync_data().map_err(err)
+    /// Appends one row of values (same length as the header) and flushes it to disk: reals
+    /// as `{:.10e}`, counts as integers.
+    pub fn append(&mut self, row: &[Value]) -> Result<()> {
+        let fields: Vec<String> = row
+            .iter()
+            .map(|v| match v {
+                Value::Real(x) => format!("{x:.10e}"),
+                Value::Count(n) => n.to_string(),
+            })
+            .collect();
+        self.append_fields(&fields)
     }
 }

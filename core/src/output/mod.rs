@@ -2,6 +2,7 @@
 //! reader (or a killed run) never sees a half-written file.
 
 pub mod atomic;
+pub mod fields;
 pub mod history;
 pub mod vtk;
 

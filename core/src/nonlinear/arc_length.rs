@@ -15,10 +15,12 @@
 //! from the constraint (the root keeping the increment closest to its previous direction). The
 //! predictor follows the tangent (b, 1) in the direction of the last converged increment.
 
+use super::convergence::{NewtonSettings, ReferenceScales};
+use super::{IncrementFailure, IncrementReport};
 use crate::error::CoreError;
-use crate::linear_solver::SparseSolver;
-use crate::model::Model;
-use crate::newton::{IncrementFailure, IncrementReport, NewtonSettings, ReferenceScales};
+use crate::linear_solver::LinearSolver;
+use crate::problem::NonlinearProblem;
+use crate::vector::{dot, norm};
 use std::time::Instant;
 
 /// The last converged increment, which orients the next one.
@@ -30,56 +32,71 @@ pub struct PreviousIncrement {
     pub dt: f64,
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-fn norm(a: &[f64]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-/// dR/dt at the model's displacement by central differences of the residual in t (step h);
-/// restores the model's time.
-fn residual_rate(model: &mut Model, t: f64, h: f64, rate: &mut [f64]) -> Result<(), CoreError> {
-    model.apply_time(t + h);
-    model.assemble(false)?;
-    rate.copy_from_slice(&model.residual);
-    model.apply_time(t - h);
-    model.assemble(false)?;
-    for (r, m) in rate.iter_mut().zip(&model.residual) {
+/// dR/dt at the problem's displacement by central differences of the residual in t (step h);
+/// restores the problem's time.
+fn residual_rate(problem: &mut dyn NonlinearProblem, t: f64, h: f64, rate: &mut [f64]) -> Result<(), CoreError> {
+    problem.set_time(t + h);
+    problem.assemble(false)?;
+    rate.copy_from_slice(problem.residual());
+    problem.set_time(t - h);
+    problem.assemble(false)?;
+    for (r, m) in rate.iter_mut().zip(problem.residual()) {
         *r = (*r - m) / (2.0 * h);
     }
-    model.apply_time(t);
+    problem.set_time(t);
     Ok(())
 }
 
-/// Solves one arc-length increment of length `ds` (free-dof displacement norm) from the
-/// model's committed state at time `t0`; `rate_step` is the step of the central differences
-/// for dR/dt (a small fraction of the time scale of the loading, not of the increment: the
-/// increment in t vanishes at a limit point). On success the model holds the converged trial state
-/// at its new time `model.time` (not yet committed) and the increment is returned.
+/// One arc-length increment's request: length `ds` (free-dof displacement norm) from the
+/// committed state at `t0`, oriented by `previous`; `time_weight` is c, and `rate_step` the
+/// step of the central differences for dR/dt (a small fraction of the time scale of the
+/// loading, not of the increment: the increment in t vanishes at a limit point).
+#[derive(Debug, Clone, Copy)]
+pub struct ArcLengthRequest<'a> {
+    pub t0: f64,
+    pub ds: f64,
+    pub previous: &'a PreviousIncrement,
+    pub time_weight: f64,
+    pub rate_step: f64,
+}
+
+/// The root dl of ||w + dl b||^2 + c^2 (dt + dl)^2 = ds^2 (w = du + a) that keeps the increment
+/// pointing the way it was going; the closest point when the constraint is not met.
+fn constraint_root(du: &[f64], w: &[f64], b: &[f64], c2: f64, dt: f64, ds: f64) -> f64 {
+    let (qa, qb, qc) = (dot(b, b) + c2, 2.0 * (dot(b, w) + c2 * dt), dot(w, w) + c2 * dt * dt - ds * ds);
+    let disc = qb * qb - 4.0 * qa * qc;
+    if qa <= 0.0 {
+        0.0
+    } else if disc < 0.0 {
+        // no intersection with the constraint: the closest point (residual stays reduced)
+        -qb / (2.0 * qa)
+    } else {
+        let root = disc.sqrt();
+        let (l1, l2) = ((-qb + root) / (2.0 * qa), (-qb - root) / (2.0 * qa));
+        let score = |l: f64| dot(du, w) + l * dot(du, b) + c2 * dt * (dt + l);
+        if score(l1) >= score(l2) { l1 } else { l2 }
+    }
+}
+
+/// Solves one arc-length increment (see the module documentation). On success the problem
+/// holds the converged trial state at its new time (not yet committed) and the increment is
+/// returned.
 pub fn solve_arc_length_increment(
-    model: &mut Model,
-    solver: &mut SparseSolver,
-    t0: f64,
-    ds: f64,
-    previous: &PreviousIncrement,
-    time_weight: f64,
-    rate_step: f64,
+    problem: &mut dyn NonlinearProblem,
+    linear: &mut dyn LinearSolver,
+    request: ArcLengthRequest<'_>,
     settings: &NewtonSettings,
     scales: ReferenceScales,
 ) -> Result<(IncrementReport, PreviousIncrement), IncrementFailure> {
-    let n = model.n_free();
+    let ArcLengthRequest { t0, ds, previous, time_weight, rate_step: h } = request;
+    let n = problem.n_free();
     let mut report = IncrementReport::default();
-    let h = rate_step;
-    let free = model.free_dofs().to_vec();
-    let u0: Vec<f64> = free.iter().map(|&g| model.displacement[g]).collect();
+    let u0 = problem.free_values();
     // u = u0 + du on the free dofs, prescribed values and loads at time t
-    let set_state = |model: &mut Model, du: &[f64], t: f64| {
-        model.apply_time(t);
-        for (k, &g) in free.iter().enumerate() {
-            model.displacement[g] = u0[k] + du[k];
-        }
+    let set_state = |problem: &mut dyn NonlinearProblem, du: &[f64], t: f64| {
+        problem.set_time(t);
+        let u: Vec<f64> = u0.iter().zip(du).map(|(a, b)| a + b).collect();
+        problem.set_free_values(&u);
     };
     let mut rate = vec![0.0; n];
     let mut b = vec![0.0; n];
@@ -87,17 +104,18 @@ pub fn solve_arc_length_increment(
 
     // Predictor along the tangent at the committed state.
     let timer = Instant::now();
-    set_state(model, &vec![0.0; n], t0);
-    model.assemble(true)?;
-    residual_rate(model, t0, h, &mut rate)?;
+    set_state(problem, &vec![0.0; n], t0);
+    problem.assemble(true)?;
+    residual_rate(problem, t0, h, &mut rate)?;
     report.assembly_seconds += timer.elapsed().as_secs_f64();
     let timer = Instant::now();
-    solver.factorize(model.pattern(), &model.tangent_values)?;
+    linear.factorize(problem.pattern(), problem.tangent())?;
     report.factorization_seconds += timer.elapsed().as_secs_f64();
+    report.factorizations += 1;
     for (x, r) in b.iter_mut().zip(&rate) {
         *x = -r;
     }
-    solver.solve_in_place(&mut b)?;
+    linear.solve_in_place(&mut b)?;
     let b_norm = norm(&b);
     if !(b_norm > 0.0) {
         return Err(
@@ -113,58 +131,40 @@ pub fn solve_arc_length_increment(
 
     for iteration in 0..=settings.max_iterations {
         let timer = Instant::now();
-        set_state(model, &du, t0 + dt);
-        model.assemble(true)?;
+        set_state(problem, &du, t0 + dt);
+        problem.assemble(true)?;
         report.assembly_seconds += timer.elapsed().as_secs_f64();
-        let r_norm = norm(&model.residual);
+        let r_norm = norm(problem.residual());
         report.residual_norms.push(r_norm);
-        let force_scale =
-            norm(&model.internal_force).max(norm(&model.external_force)).max(scales.force).max(settings.force_floor);
-        if iteration > 0 && r_norm <= settings.tol_residual * force_scale {
-            // `a` holds the last correction
-            let du_ok = norm(&a)
-                <= settings.tol_displacement * ds.max(scales.displacement * 1e-3).max(settings.displacement_floor);
-            if du_ok || r_norm <= 1e-3 * settings.tol_residual * force_scale {
-                report.iterations = iteration;
-                return Ok((report, PreviousIncrement { du, dt }));
-            }
+        let force_scale = settings.force_scale(problem.force_norm(), scales);
+        // `a` holds the last correction
+        if iteration > 0 && settings.converged(r_norm, force_scale, norm(&a), ds, scales) {
+            report.iterations = iteration;
+            return Ok((report, PreviousIncrement { du, dt }));
         }
         if iteration == settings.max_iterations {
             break;
         }
-        for (ai, r) in a.iter_mut().zip(&model.residual) {
+        for (ai, r) in a.iter_mut().zip(problem.residual()) {
             *ai = -r;
         }
         // (the rate's assemblies leave the tangent of (u, t) in place)
         let timer = Instant::now();
-        residual_rate(model, t0 + dt, h, &mut rate)?;
+        residual_rate(problem, t0 + dt, h, &mut rate)?;
         report.assembly_seconds += timer.elapsed().as_secs_f64();
         let timer = Instant::now();
-        solver.factorize(model.pattern(), &model.tangent_values)?;
+        linear.factorize(problem.pattern(), problem.tangent())?;
         report.factorization_seconds += timer.elapsed().as_secs_f64();
+        report.factorizations += 1;
         let timer = Instant::now();
         for (bi, q) in b.iter_mut().zip(&rate) {
             *bi = -q;
         }
-        solver.solve_in_place(&mut a)?;
-        solver.solve_in_place(&mut b)?;
+        linear.solve_in_place(&mut a)?;
+        linear.solve_in_place(&mut b)?;
         report.solve_seconds += timer.elapsed().as_secs_f64();
-        // ||du + a + dl b||^2 + c^2 (dt + dl)^2 = ds^2
         let w: Vec<f64> = du.iter().zip(&a).map(|(x, y)| x + y).collect();
-        let (qa, qb, qc) = (dot(&b, &b) + c2, 2.0 * (dot(&b, &w) + c2 * dt), dot(&w, &w) + c2 * dt * dt - ds * ds);
-        let disc = qb * qb - 4.0 * qa * qc;
-        let dl = if qa <= 0.0 {
-            0.0
-        } else if disc < 0.0 {
-            // no intersection with the constraint: the closest point (residual stays reduced)
-            -qb / (2.0 * qa)
-        } else {
-            let root = disc.sqrt();
-            let (l1, l2) = ((-qb + root) / (2.0 * qa), (-qb - root) / (2.0 * qa));
-            // keep the increment pointing the way it was going
-            let score = |l: f64| dot(&du, &w) + l * dot(&du, &b) + c2 * dt * (dt + l);
-            if score(l1) >= score(l2) { l1 } else { l2 }
-        };
+        let dl = constraint_root(&du, &w, &b, c2, dt, ds);
         for ((d, ai), bi) in du.iter_mut().zip(a.iter_mut()).zip(&b) {
             *ai += dl * bi;
             *d += *ai;
@@ -174,5 +174,5 @@ pub fn solve_arc_length_increment(
             return Err(CoreError::NonFinite("arc-length increment".into()).into());
         }
     }
-    Err(IncrementFailure::Diverged { iterations: settings.max_iterations, residual: norm(&model.residual) })
+    Err(IncrementFailure::Diverged { iterations: settings.max_iterations, residual: norm(problem.residual()) })
 }

@@ -2,11 +2,11 @@
 //! outputs (e.g. equivalent plastic strain), as cell averages and as nodal values
 //! (volume-weighted averages of the cell averages around each node).
 
-use stiction_core::element::Kinematics;
-use stiction_core::mesh::CellType;
-use stiction_core::model::Model;
-use stiction_core::output::vtk::Field;
-use stiction_core::voigt::von_mises;
+use crate::element::Kinematics;
+use crate::mesh::CellType;
+use crate::model::Model;
+use crate::output::vtk::Field;
+use crate::voigt::von_mises;
 
 /// The cells of the solid (type, flattened gmsh connectivity) in the order of the cell fields.
 pub fn solid_cells(model: &Model) -> Vec<(CellType, &[usize])> {

@@ -1,4 +1,4 @@
-//! Sparse direct solution with faer: the symbolic Cholesky analysis (AMD ordering, elimination
+//! Sparse direct solution with faer (the default [`LinearSolver`]): the symbolic Cholesky analysis (AMD ordering, elimination
 //! tree, supernodes) runs once per sparsity pattern; each Newton iteration refactorizes
 //! numerically into buffers owned here, and the workspace is reused.
 //!
@@ -6,6 +6,7 @@
 //! tangent is not positive definite (a softening interface law, an unstable adhesive branch)
 //! the same symbolic structure is used for an LDL^T factorization.
 
+use super::{FactorKind, LinearSolver};
 use crate::error::{CoreError, Result};
 use crate::sparse::SparsityPattern;
 use dyn_stack::{MemBuffer, MemStack, StackReq};
@@ -17,15 +18,8 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
-/// Which numeric factorization the last call used.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FactorKind {
-    Llt,
-    Ldlt,
-}
-
 /// A reusable sparse symmetric direct solver for one sparsity pattern.
-pub struct SparseSolver {
+pub struct FaerCholesky {
     symbolic: SymbolicCholesky<usize>,
     factor_values: Vec<f64>,
     workspace: MemBuffer,
@@ -33,9 +27,15 @@ pub struct SparseSolver {
     par: Par,
 }
 
-impl SparseSolver {
-    /// Symbolic analysis of `pattern` (done once per topology).
-    pub fn new(pattern: &SparsityPattern) -> Result<Self> {
+impl FaerCholesky {
+    /// The kind of the last successful factorization.
+    pub fn last_kind(&self) -> Option<FactorKind> {
+        self.kind
+    }
+}
+
+impl LinearSolver for FaerCholesky {
+    fn analyse(pattern: &SparsityPattern) -> Result<Self> {
         let par = Par::rayon(0);
         let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
         let symbolic =
@@ -52,17 +52,11 @@ impl SparseSolver {
         Ok(Self { symbolic, factor_values, workspace, kind: None, par })
     }
 
-    /// Number of stored entries of the factor.
-    pub fn factor_nnz(&self) -> usize {
+    fn factor_nnz(&self) -> usize {
         self.factor_values.len()
     }
 
-    pub fn last_kind(&self) -> Option<FactorKind> {
-        self.kind
-    }
-
-    /// Numeric factorization of the matrix with `values` on `pattern` (lower triangle read).
-    pub fn factorize(&mut self, pattern: &SparsityPattern, values: &[f64]) -> Result<FactorKind> {
+    fn factorize(&mut self, pattern: &SparsityPattern, values: &[f64]) -> Result<FactorKind> {
         if values.iter().any(|v| !v.is_finite()) {
             return Err(CoreError::NonFinite("tangent matrix".into()));
         }
@@ -101,8 +95,7 @@ impl SparseSolver {
         Ok(FactorKind::Ldlt)
     }
 
-    /// Solves A x = b in place (b becomes x) with the last factorization.
-    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
         let n = rhs.len();
         let kind = self.kind.ok_or_else(|| CoreError::Factorization("solve before factorization".into()))?;
         let stack = MemStack::new(&mut self.workspace);
@@ -139,7 +132,7 @@ mod tests {
                     values[p.slot(i + 1, i).unwrap()] = -1.0;
                 }
             }
-            let mut solver = SparseSolver::new(&p).unwrap();
+            let mut solver = FaerCholesky::analyse(&p).unwrap();
             let kind = solver.factorize(&p, &values).unwrap();
             assert_eq!(kind, if shift > 0.0 { FactorKind::Llt } else { FactorKind::Ldlt });
             let b: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();

@@ -1,0 +1,37 @@
+//! Linear solvers for the Newton systems K du = -r on a sparsity pattern fixed per topology.
+//!
+//! The life cycle follows faer's own split: [`LinearSolver::analyse`] once per pattern
+//! (ordering, elimination tree, storage), [`LinearSolver::factorize`] for each new matrix, then
+//! any number of [`LinearSolver::solve_in_place`] with that factor. A nonlinear solver may keep
+//! a factor across iterations (modified Newton) and solve with it again: that is why factoring
+//! and solving are separate calls. Implementations: [`FaerCholesky`] (LL^T with an LDL^T
+//! fallback). A different ordering, a reused or single-precision factor, or an iterative solver
+//! is a new implementation of this trait.
+
+mod faer_cholesky;
+
+pub use faer_cholesky::FaerCholesky;
+
+use crate::error::Result;
+use crate::sparse::SparsityPattern;
+
+/// Which numeric factorization the last call used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FactorKind {
+    Llt,
+    Ldlt,
+}
+
+/// A sparse solver for one symmetric sparsity pattern (the lower triangle is read).
+pub trait LinearSolver {
+    /// Symbolic analysis of `pattern`, done once per topology.
+    fn analyse(pattern: &SparsityPattern) -> Result<Self>
+    where
+        Self: Sized;
+    /// Numeric factorization of the matrix with `values` on `pattern`.
+    fn factorize(&mut self, pattern: &SparsityPattern, values: &[f64]) -> Result<FactorKind>;
+    /// Solves A x = b in place (b becomes x) with the last factorization.
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()>;
+    /// Stored entries of the factor (memory and cost measure).
+    fn factor_nnz(&self) -> usize;
+}

@@ -1,0 +1,78 @@
+//! Settings of the nonlinear solvers and the one convergence test they all use.
+//!
+//! An increment has converged when ||r|| <= tol_residual * F and
+//! ||c|| <= tol_displacement * max(||du_increment||, 1e-3 ||u||, displacement_floor), with
+//! F = max(||f_int||, ||f_ext||, q_ref, force_floor) and c the last correction; a residual
+//! below 1e-3 of its tolerance is accepted without the second test. q_ref is the caller's
+//! time-averaged force norm over the converged increments (ABAQUS's time-averaged force):
+//! without it a body whose load has dropped to nearly zero (a cohesive interface near complete
+//! failure) would be held to a residual below the round-off of its element forces.
+
+/// Nonlinear solver settings; `Default` is the single source of the defaults that case files
+/// and the command-line help quote.
+#[derive(Debug, Clone)]
+pub struct NewtonSettings {
+    pub max_iterations: usize,
+    pub tol_residual: f64,
+    pub tol_displacement: f64,
+    /// Absolute force below which residuals count as zero (units of force).
+    pub force_floor: f64,
+    /// Absolute displacement below which corrections count as zero (units of length).
+    pub displacement_floor: f64,
+    pub line_search: bool,
+    pub max_line_search: usize,
+}
+
+impl Default for NewtonSettings {
+    fn default() -> Self {
+        Self {
+            max_iterations: 25,
+            tol_residual: 1e-8,
+            tol_displacement: 1e-6,
+            force_floor: 1e-12,
+            displacement_floor: 1e-14,
+            line_search: true,
+            max_line_search: 6,
+        }
+    }
+}
+
+/// The scales convergence is measured against (see the module documentation).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ReferenceScales {
+    /// ||u|| at the last converged increment.
+    pub displacement: f64,
+    /// Time-averaged force norm over the converged increments so far (q_ref).
+    pub force: f64,
+}
+
+impl NewtonSettings {
+    /// F = max(force_norm, q_ref, force_floor).
+    pub fn force_scale(&self, force_norm: f64, scales: ReferenceScales) -> f64 {
+        force_norm.max(scales.force).max(self.force_floor)
+    }
+
+    /// ||r|| <= tol_residual F.
+    pub fn residual_converged(&self, residual: f64, force_scale: f64) -> bool {
+        residual <= self.tol_residual * force_scale
+    }
+
+    /// ||r|| <= 1e-3 tol_residual F: converged whatever the correction.
+    pub fn residual_negligible(&self, residual: f64, force_scale: f64) -> bool {
+        residual <= 1e-3 * self.tol_residual * force_scale
+    }
+
+    /// The whole test: residual, and correction against the size of the increment.
+    pub fn converged(
+        &self,
+        residual: f64,
+        force_scale: f64,
+        correction: f64,
+        increment_size: f64,
+        scales: ReferenceScales,
+    ) -> bool {
+        let size = increment_size.max(scales.displacement * 1e-3).max(self.displacement_floor);
+        self.residual_converged(residual, force_scale)
+            && (correction <= self.tol_displacement * size || self.residual_negligible(residual, force_scale))
+    }
+}

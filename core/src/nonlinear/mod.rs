@@ -1,0 +1,69 @@
+//! Nonlinear solvers: they drive a [`NonlinearProblem`] to equilibrium at a given pseudo-time
+//! with a [`LinearSolver`], and know nothing of steps, outputs or the case. Full Newton is
+//! [`NewtonSolver`]; [`arc_length`] solves one increment on a constraint in (u, t) for path
+//! following. A quasi-Newton or Krylov-on-a-stale-factor strategy is a new [`NonlinearSolver`].
+
+pub mod arc_length;
+pub mod convergence;
+pub mod newton;
+
+pub use convergence::{NewtonSettings, ReferenceScales};
+pub use newton::{NewtonSolver, solve_increment};
+
+use crate::error::CoreError;
+use crate::linear_solver::LinearSolver;
+use crate::problem::NonlinearProblem;
+
+/// What one converged increment took.
+#[derive(Debug, Clone, Default)]
+pub struct IncrementReport {
+    pub iterations: usize,
+    /// ||r|| before each solve and at convergence.
+    pub residual_norms: Vec<f64>,
+    pub factorizations: usize,
+    pub assembly_seconds: f64,
+    pub factorization_seconds: f64,
+    pub solve_seconds: f64,
+}
+
+/// Why an increment failed (the path control cuts the step).
+#[derive(Debug)]
+pub enum IncrementFailure {
+    Diverged { iterations: usize, residual: f64 },
+    Error(CoreError),
+}
+
+impl std::fmt::Display for IncrementFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            IncrementFailure::Diverged { iterations, residual } => {
+                write!(f, "no convergence after {iterations} iterations (residual {residual:.3e})")
+            }
+            IncrementFailure::Error(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl From<CoreError> for IncrementFailure {
+    fn from(e: CoreError) -> Self {
+        IncrementFailure::Error(e)
+    }
+}
+
+/// Solves equilibrium at a fixed pseudo-time.
+pub trait NonlinearSolver {
+    /// Solves r(u, t) = 0 from the problem's trial state; on success the problem holds the
+    /// converged trial state (not committed).
+    fn solve(
+        &mut self,
+        problem: &mut dyn NonlinearProblem,
+        linear: &mut dyn LinearSolver,
+        t: f64,
+        scales: ReferenceScales,
+    ) -> Result<IncrementReport, IncrementFailure>;
+    /// The settings (convergence test, iteration limits) this solver applies.
+    fn settings(&self) -> &NewtonSettings;
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,132 @@
+//! Full Newton-Raphson with the consistent tangent and a backtracking line search: one
+//! factorization per iteration. Convergence: [`NewtonSettings::converged`].
+
+use super::convergence::{NewtonSettings, ReferenceScales};
+use super::{IncrementFailure, IncrementReport, NonlinearSolver};
+use crate::error::Result;
+use crate::linear_solver::LinearSolver;
+use crate::problem::NonlinearProblem;
+use crate::vector::{distance, norm};
+use std::time::Instant;
+
+/// Full Newton (the default nonlinear solver).
+#[derive(Debug, Clone, Default)]
+pub struct NewtonSolver {
+    pub settings: NewtonSettings,
+}
+
+impl NonlinearSolver for NewtonSolver {
+    fn settings(&self) -> &NewtonSettings {
+        &self.settings
+    }
+
+    fn solve(
+        &mut self,
+        problem: &mut dyn NonlinearProblem,
+        linear: &mut dyn LinearSolver,
+        t: f64,
+        scales: ReferenceScales,
+    ) -> std::result::Result<IncrementReport, IncrementFailure> {
+        solve_increment(problem, linear, t, &self.settings, scales)
+    }
+}
+
+/// Solves equilibrium at pseudo-time `t` starting from the problem's current trial state (the
+/// committed state, possibly moved by a predictor). On success the problem holds the converged
+/// trial state (not yet committed).
+pub fn solve_increment(
+    problem: &mut dyn NonlinearProblem,
+    linear: &mut dyn LinearSolver,
+    t: f64,
+    settings: &NewtonSettings,
+    scales: ReferenceScales,
+) -> std::result::Result<IncrementReport, IncrementFailure> {
+    let mut report = IncrementReport::default();
+    let start_u: Vec<f64> = problem.solution().to_vec();
+    problem.set_time(t);
+    let timer = Instant::now();
+    problem.assemble(true)?;
+    report.assembly_seconds += timer.elapsed().as_secs_f64();
+    let mut du = vec![0.0; problem.n_free()];
+    for iteration in 0..=settings.max_iterations {
+        let r_norm = norm(problem.residual());
+        let force_scale = settings.force_scale(problem.force_norm(), scales);
+        report.residual_norms.push(r_norm);
+        if iteration > 0 || settings.residual_negligible(r_norm, force_scale) {
+            let step_norm = distance(problem.solution(), &start_u);
+            if settings.converged(r_norm, force_scale, norm(&du), step_norm, scales) {
+                report.iterations = iteration;
+                return Ok(report);
+            }
+        }
+        if iteration == settings.max_iterations {
+            break;
+        }
+        let timer = Instant::now();
+        linear.factorize(problem.pattern(), problem.tangent())?;
+        report.factorization_seconds += timer.elapsed().as_secs_f64();
+        report.factorizations += 1;
+        let timer = Instant::now();
+        for (d, r) in du.iter_mut().zip(problem.residual()) {
+            *d = -r;
+        }
+        linear.solve_in_place(&mut du)?;
+        report.solve_seconds += timer.elapsed().as_secs_f64();
+        let timer = Instant::now();
+        let alpha = line_search(problem, &du, r_norm, settings);
+        report.assembly_seconds += timer.elapsed().as_secs_f64();
+        let alpha = alpha?;
+        for d in du.iter_mut() {
+            *d *= alpha;
+        }
+    }
+    Err(IncrementFailure::Diverged { iterations: settings.max_iterations, residual: norm(problem.residual()) })
+}
+
+/// Moves the problem along `du` from the state with residual norm `r_norm` and returns the
+/// step length alpha; the problem is left assembled (with tangent) at u + alpha du.
+///
+/// The full step is taken when it reduces ||r||; otherwise (with line search on) alpha is
+/// chosen by a quadratic model of ||r(u + alpha du)||^2, safeguarded to [0.1, 0.5] of the last
+/// trial, until ||r|| < (1 - 1e-4 alpha) r_norm. If no trial succeeds the full step is kept:
+/// quadratic convergence may still follow (and a material failure at the full step is
+/// reported as such).
+fn line_search(problem: &mut dyn NonlinearProblem, du: &[f64], r_norm: f64, settings: &NewtonSettings) -> Result<f64> {
+    let mut alpha = 1.0;
+    problem.add_to_free(du, alpha);
+    let first = problem.assemble(true);
+    let mut accepted = first.is_ok() && norm(problem.residual()) < r_norm * (1.0 - 1e-4);
+    if !accepted && settings.line_search {
+        let mut previous = alpha;
+        let mut trial_norm = if first.is_ok() { norm(problem.residual()) } else { f64::INFINITY };
+        for _ in 0..settings.max_line_search {
+            let next = if trial_norm.is_finite() {
+                let (g0, g1) = (r_norm * r_norm, trial_norm * trial_norm);
+                let a = previous * previous * g0 / (g1 + g0 * (2.0 * previous - 1.0)).max(1e-300);
+                a.clamp(0.1 * previous, 0.5 * previous)
+            } else {
+                0.25 * previous
+            };
+            problem.add_to_free(du, next - previous);
+            previous = next;
+            alpha = next;
+            trial_norm = if problem.assemble(false).is_ok() { norm(problem.residual()) } else { f64::INFINITY };
+            if trial_norm < r_norm * (1.0 - 1e-4 * alpha) {
+                accepted = true;
+                break;
+            }
+        }
+        if accepted {
+            problem.assemble(true)?;
+        }
+    } else if let Err(e) = first {
+        return Err(e);
+    }
+    if !accepted {
+        problem.add_to_free(du, 1.0 - alpha);
+        problem.assemble(true)?;
+    }
+    // (after a failed search the full step is applied but the last trial alpha is returned:
+    // the correction the next convergence test sees is alpha du, as it always was)
+    Ok(alpha)
+}

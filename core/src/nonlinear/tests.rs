@@ -1,0 +1,181 @@
+//! The nonlinear solvers on one-unknown problems with closed-form equilibrium paths: a cubic
+//! snap-through under load control, and a two-spring chain (linear spring k in series with a
+//! softening spring F = g exp(-g)) whose end displacement t is prescribed, which snaps back.
+
+use super::arc_length::{ArcLengthRequest, PreviousIncrement, solve_arc_length_increment};
+use super::{NewtonSettings, ReferenceScales, solve_increment};
+use crate::error::Result;
+use crate::linear_solver::{FaerCholesky, LinearSolver};
+use crate::problem::NonlinearProblem;
+use crate::sparse::SparsityPattern;
+
+/// One free unknown u; `internal(u, t)` is (f_int - f_ext, d/du).
+struct OneDof {
+    residual_of: fn(f64, f64) -> (f64, f64),
+    u: f64,
+    t: f64,
+    committed: (f64, f64),
+    residual: [f64; 1],
+    tangent: [f64; 1],
+    pattern: SparsityPattern,
+    solution: [f64; 2],
+}
+
+impl OneDof {
+    fn new(residual_of: fn(f64, f64) -> (f64, f64)) -> Self {
+        let cells = [vec![0usize]];
+        let pattern = SparsityPattern::from_cells(1, 1, 1, cells.iter().map(|c| c.as_slice()), |a, _| Some(a));
+        Self {
+            residual_of,
+            u: 0.0,
+            t: 0.0,
+            committed: (0.0, 0.0),
+            residual: [0.0],
+            tangent: [0.0],
+            pattern,
+            solution: [0.0; 2],
+        }
+    }
+}
+
+impl NonlinearProblem for OneDof {
+    fn n_free(&self) -> usize {
+        1
+    }
+    fn pattern(&self) -> &SparsityPattern {
+        &self.pattern
+    }
+    fn set_time(&mut self, t: f64) {
+        self.t = t;
+        self.solution = [self.u, t];
+    }
+    fn time(&self) -> f64 {
+        self.t
+    }
+    fn assemble(&mut self, _with_tangent: bool) -> Result<()> {
+        let (r, k) = (self.residual_of)(self.u, self.t);
+        self.residual = [r];
+        self.tangent = [k];
+        Ok(())
+    }
+    fn residual(&self) -> &[f64] {
+        &self.residual
+    }
+    fn tangent(&self) -> &[f64] {
+        &self.tangent
+    }
+    fn force_norm(&self) -> f64 {
+        1.0
+    }
+    fn solution(&self) -> &[f64] {
+        &self.solution
+    }
+    fn add_to_free(&mut self, du: &[f64], alpha: f64) {
+        self.u += alpha * du[0];
+        self.solution[0] = self.u;
+    }
+    fn free_values(&self) -> Vec<f64> {
+        vec![self.u]
+    }
+    fn set_free_values(&mut self, values: &[f64]) {
+        self.u = values[0];
+        self.solution[0] = self.u;
+    }
+    fn increment_since_commit(&self) -> Vec<f64> {
+        vec![self.u - self.committed.0]
+    }
+    fn commit(&mut self) {
+        self.committed = (self.u, self.t);
+    }
+    fn rollback(&mut self) {
+        (self.u, self.t) = self.committed;
+        self.solution = [self.u, self.t];
+    }
+}
+
+/// r = u^3 - 3 u^2 + 2.5 u - t: limit points at u = 1 -+ sqrt(6)/6.
+fn snap_through(u: f64, t: f64) -> (f64, f64) {
+    (u * u * u - 3.0 * u * u + 2.5 * u - t, 3.0 * u * u - 6.0 * u + 2.5)
+}
+
+/// Chain with k = 0.1, end displacement t: r = k u - g exp(-g), g = t - u (force balance at
+/// the middle node). Closed-form path: t = g + g exp(-g) / k, u = g exp(-g) / k.
+fn softening_chain(u: f64, t: f64) -> (f64, f64) {
+    let g = t - u;
+    let k = 0.1;
+    (k * u - g * (-g).exp(), k + (1.0 - g) * (-g).exp())
+}
+
+fn settings() -> NewtonSettings {
+    NewtonSettings { tol_residual: 1e-12, tol_displacement: 1e-10, ..NewtonSettings::default() }
+}
+
+#[test]
+fn newton_converges_quadratically_on_the_stable_branch() {
+    let mut p = OneDof::new(snap_through);
+    let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+    let report = solve_increment(&mut p, &mut linear, 0.3, &settings(), ReferenceScales::default()).unwrap();
+    let (r, _) = snap_through(p.u, 0.3);
+    assert!(r.abs() < 1e-12, "residual {r}");
+    // order from the last three residuals before convergence: log(r3/r2) / log(r2/r1)
+    let n = &report.residual_norms;
+    assert!(n.len() >= 4, "{n:?}");
+    let k = n.len() - 1;
+    let order = (n[k - 1] / n[k - 2]).ln() / (n[k - 2] / n[k - 3]).ln();
+    assert!(order > 1.8, "observed order {order} from {n:?}");
+    assert_eq!(report.factorizations, report.iterations);
+}
+
+/// Traces `path` by arc length from t = 0 and returns the converged (u, t).
+fn trace(residual_of: fn(f64, f64) -> (f64, f64), start_dt: f64, ds: f64, steps: usize) -> Vec<(f64, f64)> {
+    let mut p = OneDof::new(residual_of);
+    let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+    // one load-controlled increment to orient the path
+    solve_increment(&mut p, &mut linear, start_dt, &settings(), ReferenceScales::default()).unwrap();
+    let mut previous = PreviousIncrement { du: p.increment_since_commit(), dt: start_dt };
+    p.commit();
+    let weight = previous.du[0].abs() / start_dt;
+    let mut states = vec![(p.u, p.t)];
+    for _ in 0..steps {
+        let request = ArcLengthRequest { t0: p.t, ds, previous: &previous, time_weight: weight, rate_step: 1e-7 };
+        let (_, increment) =
+            solve_arc_length_increment(&mut p, &mut linear, request, &settings(), ReferenceScales::default())
+                .unwrap_or_else(|e| panic!("at u = {}: {e}", p.u));
+        p.commit();
+        previous = increment;
+        states.push((p.u, p.t));
+    }
+    states
+}
+
+/// Turns of the load parameter along a traced path.
+fn turns(states: &[(f64, f64)]) -> usize {
+    states.windows(3).filter(|w| (w[1].1 - w[0].1) * (w[2].1 - w[1].1) < 0.0).count()
+}
+
+#[test]
+fn arc_length_passes_both_limit_points_of_a_snap_through() {
+    let states = trace(snap_through, 0.1, 0.05, 60);
+    for &(u, t) in &states {
+        assert!(snap_through(u, t).0.abs() < 1e-10, "off the path at u = {u}, t = {t}");
+    }
+    assert!(states.last().unwrap().0 > 1.6, "did not get past the second limit point: {:?}", states.last());
+    assert_eq!(turns(&states), 2, "the load parameter turns at both limit points");
+    // the largest load reached is the first limit point's, f(1 - sqrt(6)/6), to the path resolution
+    let u1 = 1.0 - 6f64.sqrt() / 6.0;
+    let turn = states.windows(3).position(|w| (w[1].1 - w[0].1) * (w[2].1 - w[1].1) < 0.0).unwrap();
+    let peak = states[..turn + 3].iter().map(|s| s.1).fold(f64::MIN, f64::max);
+    assert!((peak - snap_through(u1, 0.0).0).abs() < 5e-3, "peak load {peak}");
+}
+
+#[test]
+fn arc_length_follows_the_snap_back_of_a_softening_chain_under_end_displacement() {
+    let states = trace(softening_chain, 0.05, 0.1, 200);
+    for &(u, t) in &states {
+        let g = t - u;
+        assert!((u - g * (-g).exp() / 0.1).abs() < 1e-8, "off the closed-form path at u = {u}, t = {t}");
+    }
+    // the end displacement turns back (snap-back) and forward again
+    assert_eq!(turns(&states), 2, "turns {} along {states:?}", turns(&states));
+    assert!(states.last().unwrap().1 - states.last().unwrap().0 > 4.0, "softening spring not opened past its tail");
+}

@@ -1,0 +1,41 @@
+//! What an interface reports at its committed state, as typed data: the driver's summary,
+//! events and separation test read these fields, and `history.csv` gets them as columns.
+
+/// Interface quantities at the committed state (forces positive compressive).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct InterfaceObservables {
+    /// Approach of a rigid flat toward the body (None for interfaces without a flat).
+    pub approach: Option<f64>,
+    /// Resultant normal force on the interface.
+    pub force: f64,
+    /// Real contact area.
+    pub contact_area: f64,
+    /// Points in contact.
+    pub n_contact: usize,
+    /// Energy dissipated so far by a viscous regularisation (None where there is none).
+    pub viscous_dissipation: Option<f64>,
+}
+
+/// One `history.csv` value: integers are written as integers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Value {
+    Real(f64),
+    Count(usize),
+}
+
+impl InterfaceObservables {
+    /// Column names and values for `history.csv`, in a fixed order, present fields only.
+    pub fn columns(&self) -> Vec<(&'static str, Value)> {
+        let mut out = Vec::with_capacity(5);
+        if let Some(a) = self.approach {
+            out.push(("approach", Value::Real(a)));
+        }
+        out.push(("force", Value::Real(self.force)));
+        out.push(("contact_area", Value::Real(self.contact_area)));
+        out.push(("n_contact", Value::Count(self.n_contact)));
+        if let Some(v) = self.viscous_dissipation {
+            out.push(("viscous_dissipation", Value::Real(v)));
+        }
+        out
+    }
+}

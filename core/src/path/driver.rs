@@ -1,0 +1,378 @@
+//! The step driver: runs the steps of an analysis with a [`LoadControl`] that hands over to an
+//! [`ArcLengthControl`] at limit points (when continuation is on), commits each converged
+//! increment and notifies the observers. It does no output of its own.
+//!
+//! Hand-over rules: arc length takes over after `after_cuts` consecutive failed attempts, or
+//! when a converged load-controlled increment moved more than [`JUMP_RATIO`] times what the
+//! last increment's rate predicts (a silent jump to another branch); it hands back once t moves
+//! forward past the target that failed, or when it would leave its step window.
+
+use super::arc_length_control::ArcLengthControl;
+use super::load_control::LoadControl;
+use super::step::StepPlan;
+use super::{Attempt, PathControl, Solvers, StepWindow};
+use crate::error::Result;
+use crate::linear_solver::LinearSolver;
+use crate::model::Model;
+use crate::nonlinear::arc_length::PreviousIncrement;
+use crate::nonlinear::{IncrementFailure, IncrementReport, NonlinearSolver, ReferenceScales};
+use crate::problem::NonlinearProblem;
+use crate::record::interface_tracker::{CommitContext, InterfaceInfo};
+use crate::record::{CommittedIncrement, InterfaceTracker, Observer, RunSummary};
+use crate::vector::norm;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// A load-controlled increment whose displacement increment exceeds this multiple of the one
+/// the previous increment's rate predicts counts as a jump over a limit point.
+pub const JUMP_RATIO: f64 = 5.0;
+
+/// Everything the driver needs besides the model, the solvers and the observers.
+#[derive(Debug, Clone)]
+pub struct RunPlan {
+    pub name: String,
+    /// The case's length and force units (for reports; empty when not stated).
+    pub units: (String, String),
+    pub output_directory: PathBuf,
+    pub steps: Vec<StepPlan>,
+    /// Arc-length continuation after this many consecutive cuts (None: off).
+    pub arc_length_after_cuts: Option<usize>,
+    /// Per contribution of the model: kind and viscous-share limit.
+    pub interfaces: Vec<InterfaceInfo>,
+}
+
+/// Runs every step of `plan` on `model` from its initial state. A run that cannot go on is not
+/// an error: the summary says "failed" and why (errors are I/O and broken models).
+pub fn run_steps(
+    model: &mut Model,
+    plan: &RunPlan,
+    linear: &mut dyn LinearSolver,
+    nonlinear: &mut dyn NonlinearSolver,
+    observers: &mut [Box<dyn Observer>],
+) -> Result<RunSummary> {
+    let wall = Instant::now();
+    let first = plan.steps.first().expect("a run plan has at least one step");
+    let mut driver = Driver {
+        tracker: InterfaceTracker::new(model, &plan.interfaces),
+        summary: initial_summary(model, plan, linear.factor_nnz()),
+        breakpoints: breakpoints(model, plan),
+        t: 0.0,
+        t_end: plan.steps.last().map_or(0.0, |s| s.end_time),
+        load: LoadControl::new(&first.incrementation),
+        crossing: None,
+        last_converged: None,
+        arc_blocked: false,
+        cuts_since_commit: 0,
+        force_sum: (0.0, 0),
+        since_output: 0,
+        model,
+        plan,
+        linear,
+        nonlinear,
+        observers,
+    };
+    driver.initial_state()?;
+    let mut failure = None;
+    let mut step_start = 0.0;
+    for si in 0..plan.steps.len() {
+        if let Some(message) = driver.run_step(si, step_start)? {
+            failure = Some(message);
+            break;
+        }
+        step_start = plan.steps[si].end_time;
+        driver.crossing = None;
+    }
+    driver.finish(failure, wall)
+}
+
+fn initial_summary(model: &Model, plan: &RunPlan, factor_nnz: usize) -> RunSummary {
+    RunSummary {
+        case: plan.name.clone(),
+        length_unit: plan.units.0.clone(),
+        force_unit: plan.units.1.clone(),
+        status: "running".into(),
+        n_nodes: model.mesh.nodes.len(),
+        n_cells: model.sets.iter().map(|s| s.n_cells()).sum(),
+        n_free_dofs: model.n_free(),
+        nnz: model.pattern().nnz(),
+        factor_nnz,
+        output_directory: plan.output_directory.clone(),
+        ..Default::default()
+    }
+}
+
+/// Amplitude breakpoints and step ends: increments land on them exactly.
+fn breakpoints(model: &Model, plan: &RunPlan) -> Vec<f64> {
+    model
+        .prescribed()
+        .iter()
+        .map(|p| p.amplitude.clone())
+        .chain(model.loads.iter().map(|l| l.amplitude.clone()))
+        .chain(model.contributions.iter().flat_map(|c| c.amplitudes()))
+        .flat_map(|a| a.breakpoints_between(0.0, f64::INFINITY).collect::<Vec<_>>())
+        .chain(plan.steps.iter().map(|s| s.end_time))
+        .collect()
+}
+
+struct Driver<'a> {
+    model: &'a mut Model,
+    plan: &'a RunPlan,
+    linear: &'a mut dyn LinearSolver,
+    nonlinear: &'a mut dyn NonlinearSolver,
+    observers: &'a mut [Box<dyn Observer>],
+    tracker: InterfaceTracker,
+    summary: RunSummary,
+    breakpoints: Vec<f64>,
+    /// Pseudo-time of the committed state, and of the end of the run.
+    t: f64,
+    t_end: f64,
+    load: LoadControl,
+    /// An arc-length crossing in progress.
+    crossing: Option<ArcLengthControl>,
+    /// The last converged increment (free dofs, dt), kept through cuts to start arc length.
+    last_converged: Option<PreviousIncrement>,
+    /// Set when arc length had to hand back to load control; cleared by the next commit.
+    arc_blocked: bool,
+    cuts_since_commit: usize,
+    /// Sum and count of the force norms of the converged increments (the Newton reference
+    /// force is their mean).
+    force_sum: (f64, usize),
+    /// Increments since the last field frame.
+    since_output: usize,
+}
+
+/// What to do after handling an attempt.
+enum Flow {
+    Continue,
+    /// The step ended early (its interface separated).
+    StepDone,
+    /// The run cannot go on.
+    Stop(String),
+}
+
+impl Driver<'_> {
+    fn initial_state(&mut self) -> Result<()> {
+        self.model.apply_time(0.0);
+        self.model.assemble(false)?;
+        self.model.commit();
+        let initial = CommittedIncrement {
+            step: 0,
+            increment: 0,
+            iterations: 0,
+            frame_due: true,
+            fraction_done: 0.0,
+            description: "initial state".into(),
+        };
+        for o in self.observers.iter_mut() {
+            o.committed(self.model, &initial)?;
+        }
+        Ok(())
+    }
+
+    fn scales(&self) -> ReferenceScales {
+        let (sum, count) = self.force_sum;
+        let mean = if count == 0 { 0.0 } else { sum / count as f64 };
+        ReferenceScales { displacement: norm(&self.model.displacement), force: mean }
+    }
+
+    /// Runs step `si` from `step_start`; Some(message) when the run cannot go on.
+    fn run_step(&mut self, si: usize, step_start: f64) -> Result<Option<String>> {
+        let step = &self.plan.steps[si];
+        self.load.start_step(&step.incrementation);
+        self.since_output = 0;
+        while self.t < step.end_time - 1e-12 * self.t_end {
+            let breakpoints = std::mem::take(&mut self.breakpoints);
+            let window = StepWindow {
+                t: self.t,
+                step_start,
+                step_end: step.end_time,
+                t_end: self.t_end,
+                breakpoints: &breakpoints,
+            };
+            let scales = self.scales();
+            let solvers = Solvers { linear: &mut *self.linear, nonlinear: &mut *self.nonlinear };
+            let by_arc_length = self.crossing.is_some();
+            let attempt = match self.crossing.as_mut() {
+                Some(arc) => arc.attempt(self.model, solvers, &window, scales),
+                None => self.load.attempt(self.model, solvers, &window, scales),
+            };
+            self.breakpoints = breakpoints;
+            let flow = match attempt {
+                Attempt::Converged(report) => self.converged(si, report, by_arc_length)?,
+                Attempt::Failed(failure) => self.failed(si, &failure),
+                Attempt::OutsideWindow => {
+                    self.crossing = None;
+                    self.arc_blocked = true;
+                    self.load.after_detour(step.end_time - self.t);
+                    Flow::Continue
+                }
+            };
+            match flow {
+                Flow::Continue => {}
+                Flow::StepDone => break,
+                Flow::Stop(message) => return Ok(Some(message)),
+            }
+        }
+        Ok(None)
+    }
+
+    /// A failed attempt: roll back, then cut the active control (or start arc length).
+    fn failed(&mut self, si: usize, failure: &IncrementFailure) -> Flow {
+        self.model.rollback();
+        self.load.forget();
+        self.summary.cut_increments += 1;
+        self.cuts_since_commit += 1;
+        if let Some(arc) = self.crossing.as_mut() {
+            let cut = arc.cut(failure);
+            return self.after_cut(si, cut, failure);
+        }
+        let wants_arc = self.plan.arc_length_after_cuts.is_some_and(|after| self.cuts_since_commit >= after);
+        if wants_arc && !self.arc_blocked {
+            let resume_after = self.load.first_failed_target.unwrap_or(self.t);
+            self.crossing =
+                self.last_converged.clone().and_then(|previous| ArcLengthControl::start(previous, resume_after));
+            if self.crossing.is_some() {
+                return Flow::Continue;
+            }
+        }
+        let cut = self.load.cut(failure);
+        self.after_cut(si, cut, failure)
+    }
+
+    fn after_cut(&mut self, si: usize, cut: std::result::Result<String, String>, failure: &IncrementFailure) -> Flow {
+        match cut {
+            Ok(what) => {
+                let text = format!("{}: {what} at t = {:.4} ({failure})", self.plan.steps[si].name, self.t);
+                for o in self.observers.iter_mut() {
+                    o.message(&text);
+                }
+                Flow::Continue
+            }
+            Err(message) => Flow::Stop(message),
+        }
+    }
+
+    /// Whether a converged load-controlled increment to `target` jumped to another branch:
+    /// its displacements moved more than JUMP_RATIO times what the last increment's rate
+    /// predicts. If so, the increment is rolled back and arc length starts.
+    fn jumped(&mut self, target: f64, du: &[f64]) -> bool {
+        if self.plan.arc_length_after_cuts.is_none() || self.arc_blocked {
+            return false;
+        }
+        let Some(previous) = self.last_converged.clone().filter(|p| p.dt > 0.0 && target > self.t) else {
+            return false;
+        };
+        let predicted = norm(&previous.du) * (target - self.t) / previous.dt;
+        if !(predicted > 0.0 && norm(du) > JUMP_RATIO * predicted) {
+            return false;
+        }
+        self.model.rollback();
+        self.summary.cut_increments += 1;
+        self.cuts_since_commit += 1;
+        self.crossing = ArcLengthControl::start(previous, target);
+        true
+    }
+
+    /// A converged attempt: accept it (or detect a jump), commit, record, adapt the increment.
+    fn converged(&mut self, si: usize, report: IncrementReport, by_arc_length: bool) -> Result<Flow> {
+        let step = &self.plan.steps[si];
+        let target = self.model.time;
+        let (mut limit_point, mut resume) = (false, false);
+        if let Some(arc) = self.crossing.as_mut() {
+            let outcome = arc.accept(target, report.iterations, &step.incrementation);
+            (limit_point, resume) = (outcome.limit_point, outcome.resume);
+            self.summary.arc_length_increments += 1;
+            self.summary.limit_points += usize::from(limit_point);
+        }
+        let du = self.model.increment_since_commit();
+        if !by_arc_length && self.jumped(target, &du) {
+            return Ok(Flow::Continue);
+        }
+        self.force_sum.0 += NonlinearProblem::force_norm(&*self.model);
+        self.force_sum.1 += 1;
+        let reversal = self.breakpoints.iter().any(|&b| (b - target).abs() <= 1e-12 * self.t_end.max(1.0));
+        self.last_converged = Some(PreviousIncrement { du: du.clone(), dt: target - self.t });
+        self.load.remember(du, target - self.t, reversal);
+        self.arc_blocked = false;
+        if resume {
+            // past the point where load control failed, moving forward again
+            self.crossing = None;
+            self.load.set_increment(target - self.t);
+        }
+        self.model.commit();
+        self.t = target;
+        self.add_report(&report);
+        let context = CommitContext { cuts_since_commit: self.cuts_since_commit, limit_point, by_arc_length };
+        let (events, separated) = self.tracker.update(self.model, context, step.until_separated);
+        self.cuts_since_commit = 0;
+        self.since_output += 1;
+        let at_end = self.t >= step.end_time - 1e-12 * self.t_end;
+        let frame_due = (step.output_every > 0 && self.since_output >= step.output_every) || at_end || separated;
+        if frame_due {
+            self.since_output = 0;
+        }
+        self.notify(si, &report, frame_due, &events)?;
+        if report.iterations <= step.incrementation.easy_iterations && self.crossing.is_none() && !resume {
+            self.load.grow();
+        }
+        Ok(if separated { Flow::StepDone } else { Flow::Continue })
+    }
+
+    fn add_report(&mut self, report: &IncrementReport) {
+        let s = &mut self.summary;
+        s.increments += 1;
+        s.newton_iterations += report.iterations;
+        s.factorizations += report.factorizations;
+        s.assembly_seconds += report.assembly_seconds;
+        s.factorization_seconds += report.factorization_seconds;
+        s.solve_seconds += report.solve_seconds;
+    }
+
+    /// Tells every observer of the committed increment and its events.
+    fn notify(
+        &mut self,
+        si: usize,
+        report: &IncrementReport,
+        frame_due: bool,
+        events: &[crate::record::InterfaceEvent],
+    ) -> Result<()> {
+        let last = report.residual_norms.last().copied().unwrap_or(0.0);
+        let committed = CommittedIncrement {
+            step: si + 1,
+            increment: self.summary.increments,
+            iterations: report.iterations,
+            frame_due,
+            fraction_done: if self.t_end > 0.0 { self.t / self.t_end } else { 1.0 },
+            description: format!(
+                "{}: t = {:.4} dt = {:.2e}, {} Newton its, |r| = {last:.2e}",
+                self.plan.steps[si].name, self.t, self.load.dt, report.iterations
+            ),
+        };
+        for o in self.observers.iter_mut() {
+            o.committed(self.model, &committed)?;
+            for e in events {
+                o.event(e)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn finish(mut self, failure: Option<String>, wall: Instant) -> Result<RunSummary> {
+        let (events, warnings) = self.tracker.finish(self.t);
+        let s = &mut self.summary;
+        s.final_time = self.t;
+        s.plastic_dissipation = self.model.dissipation();
+        s.wall_seconds = wall.elapsed().as_secs_f64();
+        s.status = if failure.is_some() { "failed".into() } else { "completed".into() };
+        s.message = failure;
+        s.warnings = warnings;
+        s.interfaces = self.tracker.summaries().to_vec();
+        for o in self.observers.iter_mut() {
+            for e in &events {
+                o.event(e)?;
+            }
+            o.finished(self.model, &self.summary)?;
+        }
+        Ok(self.summary)
+    }
+}

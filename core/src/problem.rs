@@ -1,0 +1,44 @@
+//! The nonlinear problem a solver drives: residual and tangent at a trial state, and the state
+//! life cycle (trial, commit, roll back), as in MFEM's `NonlinearForm` or dolfinx's
+//! `NonlinearProblem`. The problem knows nothing of how it is solved: Newton, arc length or a
+//! quasi-Newton method are separate objects that call these functions.
+//!
+//! The unknowns are the free degrees of freedom; the prescribed ones follow the pseudo-time.
+//! Solved: r(u, t) = f_int(u) - f_ext(t) = 0 on the free dofs.
+
+use crate::error::Result;
+use crate::sparse::SparsityPattern;
+
+pub trait NonlinearProblem {
+    /// Number of free unknowns (the length of the residual).
+    fn n_free(&self) -> usize;
+    /// Sparsity pattern of the tangent on the free dofs (fixed per topology).
+    fn pattern(&self) -> &SparsityPattern;
+    /// Sets pseudo-time `t`: prescribed values and external loads follow it.
+    fn set_time(&mut self, t: f64);
+    /// The pseudo-time of the trial state.
+    fn time(&self) -> f64;
+    /// Assembles the residual (and the tangent if asked) at the trial state; history-dependent
+    /// state goes to the trial copies.
+    fn assemble(&mut self, with_tangent: bool) -> Result<()>;
+    /// r on the free dofs from the last assembly.
+    fn residual(&self) -> &[f64];
+    /// Tangent values on [`NonlinearProblem::pattern`] from the last assembly with tangent.
+    fn tangent(&self) -> &[f64];
+    /// max(||f_int||, ||f_ext||) of the last assembly: the force scale of convergence tests.
+    fn force_norm(&self) -> f64;
+    /// The whole solution vector (free and prescribed values) of the trial state.
+    fn solution(&self) -> &[f64];
+    /// u_free += alpha du.
+    fn add_to_free(&mut self, du: &[f64], alpha: f64);
+    /// The free values of the trial state.
+    fn free_values(&self) -> Vec<f64>;
+    /// Overwrites the free values of the trial state.
+    fn set_free_values(&mut self, values: &[f64]);
+    /// u_free - u_free(committed).
+    fn increment_since_commit(&self) -> Vec<f64>;
+    /// Accepts the trial state as converged.
+    fn commit(&mut self);
+    /// Returns to the last committed state.
+    fn rollback(&mut self);
+}

@@ -1,0 +1,60 @@
+//! `history.csv`: one row per committed state: step, increment, time, iterations, reactions
+//! per group, plastic dissipation, and each interface's observables.
+
+use super::{CommittedIncrement, Observer};
+use crate::element::Kinematics;
+use crate::error::Result;
+use crate::model::Model;
+use crate::observables::Value;
+use crate::output::HistoryWriter;
+use std::path::Path;
+
+pub struct HistoryRecorder {
+    writer: HistoryWriter,
+    reaction_groups: Vec<(String, Vec<usize>)>,
+}
+
+impl HistoryRecorder {
+    /// Creates `path` with the header for `model`; reactions are summed over each group's nodes.
+    pub fn create(path: &Path, model: &Model, reaction_groups: Vec<(String, Vec<usize>)>) -> Result<Self> {
+        let dpn = model.dofs_per_node();
+        let component = |k: usize| {
+            if model.kinematics == Kinematics::Axisymmetric { ["r", "z"][k] } else { ["x", "y", "z"][k] }
+        };
+        let mut columns: Vec<String> =
+            ["step", "increment", "time", "iterations"].iter().map(|s| s.to_string()).collect();
+        for (g, _) in &reaction_groups {
+            for k in 0..dpn {
+                columns.push(format!("reaction_{g}_{}", component(k)));
+            }
+        }
+        columns.push("plastic_dissipation".into());
+        for c in &model.contributions {
+            if let Some(o) = c.observables() {
+                columns.extend(o.columns().into_iter().map(|(name, _)| name.to_string()));
+            }
+        }
+        Ok(Self { writer: HistoryWriter::create(path, columns)?, reaction_groups })
+    }
+}
+
+impl Observer for HistoryRecorder {
+    fn committed(&mut self, model: &Model, increment: &CommittedIncrement) -> Result<()> {
+        let mut row = vec![
+            Value::Count(increment.step),
+            Value::Count(increment.increment),
+            Value::Real(model.time),
+            Value::Count(increment.iterations),
+        ];
+        for (_, nodes) in &self.reaction_groups {
+            row.extend(model.reaction(nodes).into_iter().map(Value::Real));
+        }
+        row.push(Value::Real(model.dissipation()));
+        for c in &model.contributions {
+            if let Some(o) = c.observables() {
+                row.extend(o.columns().into_iter().map(|(_, v)| v));
+            }
+        }
+        self.writer.append(&row)
+    }
+}

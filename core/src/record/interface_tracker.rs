@@ -1,0 +1,213 @@
+//! The interfaces' key numbers over a run (maximum force, pull-off, areas, work of the flat,
+//! viscous share) and their events (contact gained or lost, jumps, limit points), updated from
+//! their typed observables at each committed increment.
+
+use super::summary::InterfaceSummary;
+use crate::model::Model;
+use crate::observables::InterfaceObservables;
+
+/// One row of `events.csv`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InterfaceEvent {
+    pub time: f64,
+    pub approach: f64,
+    pub interface: String,
+    /// contact_gained, contact_lost, jump, limit_point, increment_cut, viscous_share_exceeded.
+    pub kind: &'static str,
+    pub n_contact_before: usize,
+    pub n_contact_after: usize,
+    pub force_before: f64,
+    pub force_after: f64,
+    pub cuts_before: usize,
+}
+
+/// How the increment just committed was reached.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CommitContext {
+    /// Failed attempts since the last commit.
+    pub cuts_since_commit: usize,
+    /// The load parameter turned (arc length passed a limit point).
+    pub limit_point: bool,
+    pub by_arc_length: bool,
+}
+
+/// What an interface needs besides its observables: its kind and viscous-share limit.
+#[derive(Debug, Clone)]
+pub struct InterfaceInfo {
+    pub kind: String,
+    pub max_viscous_share: f64,
+}
+
+pub struct InterfaceTracker {
+    summaries: Vec<InterfaceSummary>,
+    observed: Vec<InterfaceObservables>,
+    had_contact: Vec<bool>,
+}
+
+/// (approach or 0, force, area, n, viscous or 0) of an observable set (0 for no observables).
+fn observe(model: &Model, k: usize) -> InterfaceObservables {
+    model.contributions[k].observables().unwrap_or_default()
+}
+
+impl InterfaceTracker {
+    /// One summary per contribution of `model`, with `infos` aligned to them.
+    pub fn new(model: &Model, infos: &[InterfaceInfo]) -> Self {
+        let summaries = model
+            .contributions
+            .iter()
+            .zip(infos)
+            .map(|(c, info)| InterfaceSummary {
+                name: c.name().to_string(),
+                kind: info.kind.clone(),
+                max_viscous_share: info.max_viscous_share,
+                ..Default::default()
+            })
+            .collect();
+        let n = model.contributions.len();
+        Self { summaries, observed: (0..n).map(|k| observe(model, k)).collect(), had_contact: vec![false; n] }
+    }
+
+    pub fn summaries(&self) -> &[InterfaceSummary] {
+        &self.summaries
+    }
+
+    /// Updates every interface from the committed state and returns the events of this
+    /// increment, and whether interface `until_separated` has separated: it had contact and
+    /// now has none, with |force| <= 1e-3 of the largest force magnitude so far (adhesive laws
+    /// pull after compressive contact is lost).
+    pub fn update(
+        &mut self,
+        model: &Model,
+        context: CommitContext,
+        until_separated: Option<usize>,
+    ) -> (Vec<InterfaceEvent>, bool) {
+        let mut events = Vec::new();
+        let mut separated = false;
+        for k in 0..self.summaries.len() {
+            let now = observe(model, k);
+            let before = self.observed[k];
+            self.update_summary(model, k, &now, &before);
+            if let Some(e) = self.event(model, k, &now, &before, context) {
+                events.push(e);
+            }
+            self.had_contact[k] |= now.n_contact > 0;
+            let s = &self.summaries[k];
+            let force_scale = s.max_force.max(-s.pull_off_force);
+            if until_separated == Some(k)
+                && self.had_contact[k]
+                && now.n_contact == 0
+                && now.force.abs() <= 1e-3 * force_scale
+            {
+                separated = true;
+            }
+            self.observed[k] = now;
+        }
+        (events, separated)
+    }
+
+    /// Maximum and pull-off forces, areas, work and viscous share of interface `k`.
+    fn update_summary(&mut self, model: &Model, k: usize, now: &InterfaceObservables, before: &InterfaceObservables) {
+        let s = &mut self.summaries[k];
+        let (a_now, a_before) = (now.approach.unwrap_or(0.0), before.approach.unwrap_or(0.0));
+        // work of the flat: trapezoid in approach
+        s.work_of_flat += 0.5 * (now.force + before.force) * (a_now - a_before);
+        s.gross_work_of_flat += 0.5 * (now.force.abs() + before.force.abs()) * (a_now - a_before).abs();
+        if now.force > s.max_force {
+            s.max_force = now.force;
+            s.approach_at_max_force = a_now;
+            s.n_contact_at_max_force = now.n_contact as f64;
+            s.contact_area_at_max_force = now.contact_area;
+            if let Some((_, fields)) = model.contributions[k].point_output() {
+                let compression = fields[0].values.iter().fold(0.0f64, |m, g| m.max(-g));
+                s.max_point_compression_at_max_force = compression;
+                s.point_share_of_approach_at_max_force = if a_now > 0.0 { compression / a_now } else { 0.0 };
+            }
+        }
+        if now.force < s.pull_off_force {
+            s.pull_off_force = now.force;
+            s.approach_at_pull_off = a_now;
+            s.contact_area_at_pull_off = now.contact_area;
+        }
+        s.max_contact_area = s.max_contact_area.max(now.contact_area);
+        let viscous = now.viscous_dissipation.unwrap_or(0.0);
+        s.viscous_dissipation = viscous;
+        s.viscous_share_of_work = if s.gross_work_of_flat > 0.0 { viscous / s.gross_work_of_flat } else { 0.0 };
+    }
+
+    /// The event of interface `k` at this increment, if any: a limit point; a jump (the
+    /// increment had to be cut and the force changed by more than 5% of the largest force
+    /// magnitude so far); contact lost or gained; or a plain cut.
+    fn event(
+        &mut self,
+        model: &Model,
+        k: usize,
+        now: &InterfaceObservables,
+        before: &InterfaceObservables,
+        context: CommitContext,
+    ) -> Option<InterfaceEvent> {
+        let contact_changed = now.n_contact != before.n_contact;
+        if !(contact_changed || context.cuts_since_commit > 0 || context.limit_point) {
+            return None;
+        }
+        let s = &mut self.summaries[k];
+        let scale = s.max_force.max(-s.pull_off_force).max(now.force.abs());
+        let kind = if context.limit_point {
+            "limit_point"
+        } else if !context.by_arc_length
+            && context.cuts_since_commit > 0
+            && (now.force - before.force).abs() > 0.05 * scale
+        {
+            "jump"
+        } else if now.n_contact < before.n_contact {
+            "contact_lost"
+        } else if now.n_contact > before.n_contact {
+            "contact_gained"
+        } else {
+            "increment_cut"
+        };
+        if contact_changed {
+            s.contact_events += 1;
+        }
+        Some(InterfaceEvent {
+            time: model.time,
+            approach: now.approach.unwrap_or(0.0),
+            interface: model.contributions[k].name().to_string(),
+            kind,
+            n_contact_before: before.n_contact,
+            n_contact_after: now.n_contact,
+            force_before: before.force,
+            force_after: now.force,
+            cuts_before: context.cuts_since_commit,
+        })
+    }
+
+    /// At the end of the run (pseudo-time `t`): a `viscous_share_exceeded` event and a warning
+    /// for each interface whose viscous regularisation dissipated too large a share of the
+    /// gross work of the flat.
+    pub fn finish(&self, t: f64) -> (Vec<InterfaceEvent>, Vec<String>) {
+        let (mut events, mut warnings) = (Vec::new(), Vec::new());
+        for (i, now) in self.summaries.iter().zip(&self.observed) {
+            if i.viscous_dissipation > 0.0 && i.viscous_share_of_work >= i.max_viscous_share {
+                events.push(InterfaceEvent {
+                    time: t,
+                    approach: now.approach.unwrap_or(0.0),
+                    interface: i.name.clone(),
+                    kind: "viscous_share_exceeded",
+                    n_contact_before: now.n_contact,
+                    n_contact_after: now.n_contact,
+                    force_before: now.force,
+                    force_after: now.force,
+                    cuts_before: 0,
+                });
+                warnings.push(format!(
+                    "interface '{}': the viscous regularisation dissipated {:.4e} = {:.1}% of the gross work of the flat, above the limit max_viscous_share = {}; lower its viscosity or use solver.continuation = \"arc-length\"",
+                    i.name,
+                    i.viscous_dissipation,
+                    100.0 * i.viscous_share_of_work,
+                    i.max_viscous_share
+                ));
+            }
+        }
+        (events, warnings)
+    }
+}

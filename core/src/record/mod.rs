@@ -1,0 +1,53 @@
+//! Recording as observers of committed increments. The step driver
+//! ([`crate::path::driver`]) notifies every [`Observer`] of the initial state, of each
+//! committed increment, of interface events, of progress messages and of the end of the run; each
+//! output (history.csv, events.csv, the VTK series, summary.json, a progress bar, plots) is one
+//! small observer. A new output is a new observer, not an edit of the loop.
+
+mod events;
+mod history;
+pub mod interface_tracker;
+pub mod summary;
+mod vtk_series;
+
+pub use events::EventsRecorder;
+pub use history::HistoryRecorder;
+pub use interface_tracker::{InterfaceEvent, InterfaceTracker};
+pub use summary::{InterfaceSummary, RunSummary, SummaryWriter};
+pub use vtk_series::VtkRecorder;
+
+use crate::error::Result;
+use crate::model::Model;
+
+/// A committed increment, as observers see it (the model holds the committed state).
+#[derive(Debug, Clone)]
+pub struct CommittedIncrement {
+    /// Step number (1-based; 0 for the initial state).
+    pub step: usize,
+    /// Increments committed so far in the run (0 for the initial state).
+    pub increment: usize,
+    /// Newton iterations this increment took.
+    pub iterations: usize,
+    /// Whether the step's output schedule asks for a field frame (VTK) now.
+    pub frame_due: bool,
+    /// Progress: the pseudo-time reached as a fraction of the run's end time.
+    pub fraction_done: f64,
+    /// A one-line description of the increment for progress displays.
+    pub description: String,
+}
+
+/// Something that records the run.
+pub trait Observer {
+    /// A committed state: the initial one (step 0) and every converged increment.
+    fn committed(&mut self, model: &Model, increment: &CommittedIncrement) -> Result<()>;
+    /// An interface event (contact gained or lost, a jump, a limit point, a warning).
+    fn event(&mut self, _event: &InterfaceEvent) -> Result<()> {
+        Ok(())
+    }
+    /// A progress message (an increment cut, an arc-length cut).
+    fn message(&mut self, _text: &str) {}
+    /// The run ended (completed, failed or stopped); `summary` says how.
+    fn finished(&mut self, _model: &Model, _summary: &RunSummary) -> Result<()> {
+        Ok(())
+    }
+}

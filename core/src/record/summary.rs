@@ -1,0 +1,106 @@
+//! `summary.json`: how the run went and each interface's key numbers; written at the end of
+//! every run, failed ones included.
+
+use super::{CommittedIncrement, Observer};
+use crate::error::Result;
+use crate::model::Model;
+use crate::output::write_atomically;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// What `summary.json` holds.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct RunSummary {
+    pub case: String,
+    /// The case's units as it states them (empty when it does not).
+    pub length_unit: String,
+    pub force_unit: String,
+    pub status: String,
+    pub message: Option<String>,
+    pub final_time: f64,
+    pub increments: usize,
+    pub cut_increments: usize,
+    /// Increments solved by arc-length continuation, and the limit points (turns of the load
+    /// parameter) they passed.
+    pub arc_length_increments: usize,
+    pub limit_points: usize,
+    pub newton_iterations: usize,
+    /// Numeric factorizations of the tangent.
+    pub factorizations: usize,
+    pub n_nodes: usize,
+    pub n_cells: usize,
+    pub n_free_dofs: usize,
+    pub nnz: usize,
+    pub factor_nnz: usize,
+    pub wall_seconds: f64,
+    pub assembly_seconds: f64,
+    pub factorization_seconds: f64,
+    pub solve_seconds: f64,
+    pub plastic_dissipation: f64,
+    pub output_directory: PathBuf,
+    /// Warnings about the results (e.g. a viscous share above its limit).
+    pub warnings: Vec<String>,
+    /// Per interface: the load cycle's key numbers.
+    pub interfaces: Vec<InterfaceSummary>,
+}
+
+/// Key numbers of one interface over the run (forces positive compressive).
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct InterfaceSummary {
+    pub name: String,
+    /// "rigid-flat" or "cohesive".
+    pub kind: String,
+    pub max_force: f64,
+    pub approach_at_max_force: f64,
+    pub n_contact_at_max_force: f64,
+    pub contact_area_at_max_force: f64,
+    /// Largest compression (-gap) of any interface point at the maximum force: for asperities,
+    /// the deformation of the most loaded asperity.
+    pub max_point_compression_at_max_force: f64,
+    /// max_point_compression_at_max_force / approach_at_max_force: the share of the approach
+    /// taken by the most compressed asperity (the rest is the continuum's deformation).
+    pub point_share_of_approach_at_max_force: f64,
+    /// Most tensile force (negative; 0 if never adhesive) and where it occurred.
+    pub pull_off_force: f64,
+    pub approach_at_pull_off: f64,
+    pub contact_area_at_pull_off: f64,
+    pub max_contact_area: f64,
+    /// Work done by the flat on the body over the run, integral of force d(approach)
+    /// (trapezoidal): over a closed load-unload cycle, the energy dissipated (plus any elastic
+    /// energy locked in by plasticity).
+    pub work_of_flat: f64,
+    /// Increments where points came into or out of contact (see events.csv).
+    pub contact_events: usize,
+    /// Gross work of the flat: integral of |force| |d approach| (the energy that went through
+    /// the interface, either way).
+    pub gross_work_of_flat: f64,
+    /// Energy dissipated by the viscous regularisation and its share of `gross_work_of_flat`
+    /// (kept below the interface's `max_viscous_share`: it measures how far the crossing of
+    /// instabilities is from quasi-static).
+    pub viscous_dissipation: f64,
+    pub viscous_share_of_work: f64,
+    /// The share at or above which a warning is issued.
+    pub max_viscous_share: f64,
+}
+
+/// Writes `summary.json` (atomically) when the run ends.
+pub struct SummaryWriter {
+    path: PathBuf,
+}
+
+impl SummaryWriter {
+    pub fn new(directory: &Path) -> Self {
+        Self { path: directory.join("summary.json") }
+    }
+}
+
+impl Observer for SummaryWriter {
+    fn committed(&mut self, _model: &Model, _increment: &CommittedIncrement) -> Result<()> {
+        Ok(())
+    }
+
+    fn finished(&mut self, _model: &Model, summary: &RunSummary) -> Result<()> {
+        let json = serde_json::to_string_pretty(summary).expect("summary serializes");
+        write_atomically(&self.path, json.as_bytes())
+    }
+}

@@ -1,0 +1,60 @@
+//! The VTK series: `<name>_NNNNN.vtu` (the solid's fields) and `<name>_<interface>_NNNNN.vtu`
+//! (interface points), each listed in its `.pvd`, written when the step's output schedule says
+//! a frame is due.
+
+use super::{CommittedIncrement, Observer};
+use crate::error::Result;
+use crate::model::Model;
+use crate::output::fields::{solid_cells, solid_fields};
+use crate::output::vtk::{CellList, PvdSeries, write_points_vtu, write_vtu};
+use std::path::{Path, PathBuf};
+
+pub struct VtkRecorder {
+    directory: PathBuf,
+    name: String,
+    solid: PvdSeries,
+    points: Vec<PvdSeries>,
+    frame: usize,
+}
+
+impl VtkRecorder {
+    /// A series named `name` in `directory`, with one point series per contribution of `model`.
+    pub fn new(directory: &Path, name: &str, model: &Model) -> Self {
+        Self {
+            directory: directory.to_path_buf(),
+            name: name.to_string(),
+            solid: PvdSeries::new(directory.join(format!("{name}.pvd"))),
+            points: model
+                .contributions
+                .iter()
+                .map(|c| PvdSeries::new(directory.join(format!("{name}_{}.pvd", c.name()))))
+                .collect(),
+            frame: 0,
+        }
+    }
+
+    fn write_frame(&mut self, model: &Model) -> Result<()> {
+        let frame = self.frame;
+        for (c, series) in model.contributions.iter().zip(self.points.iter_mut()) {
+            if let Some((points, fields)) = c.point_output() {
+                let file = format!("{}_{}_{frame:05}.vtu", self.name, c.name());
+                write_points_vtu(&self.directory.join(&file), &points, &fields)?;
+                series.add(model.time, &file)?;
+            }
+        }
+        let file = format!("{}_{frame:05}.vtu", self.name);
+        let (point, cell) = solid_fields(model);
+        let cells = solid_cells(model);
+        let lists: Vec<CellList> = cells.iter().map(|(t, c)| CellList { cell_type: *t, connectivity: c }).collect();
+        write_vtu(&self.directory.join(&file), &model.mesh.nodes, &lists, &point, &cell)?;
+        self.solid.add(model.time, &file)?;
+        self.frame += 1;
+        Ok(())
+    }
+}
+
+impl Observer for VtkRecorder {
+    fn committed(&mut self, model: &Model, increment: &CommittedIncrement) -> Result<()> {
+        if increment.frame_due { self.write_frame(model) } else { Ok(()) }
+    }
+}

@@ -1,0 +1,200 @@
+//! Interfaces: zero-thickness cohesive elements on interior surfaces (the mesh is split first)
+//! and rigid flats against a body surface or at discrete points; each with its interface law.
+
+use super::mesh::mean_edge_length;
+use super::points::discrete_points;
+use crate::case::{InterfaceSpec, LoadedCase};
+use crate::error::Result;
+use crate::laws::{LawContext, LawRegistry, make_law};
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::Arc;
+use stiction_core::element::Kinematics;
+use stiction_core::interface_law::InterfaceLaw;
+use stiction_core::mesh::Mesh;
+use stiction_core::model::Contribution;
+use stiction_elements::BoundaryFinder;
+use stiction_interfaces::DiscretePoint;
+
+use super::amplitudes::Amplitudes;
+
+/// A cohesive interface's split: its index in the case, the mesh before the split and the
+/// duplicated node pairs.
+pub struct Split {
+    pub interface: usize,
+    pub original: Mesh,
+    pub pairs: HashMap<usize, usize>,
+}
+
+/// Splits `mesh` along the surfaces of the case's cohesive interfaces (duplicating their nodes
+/// for the cells of `side`). A surface already split by an earlier cohesive interface (same
+/// side, no split list of its own) shares that split, e.g. contact on a pre-crack next to a
+/// cohesive ligament.
+pub fn split_for_cohesive(case: &LoadedCase, mut mesh: Mesh) -> Result<(Mesh, Vec<Split>)> {
+    let c = &case.case;
+    let mut splits: Vec<Split> = Vec::new();
+    for (i, spec) in c.interfaces.iter().enumerate().filter(|(_, s)| s.kind == "cohesive") {
+        let key = format!("interfaces[{i}]");
+        let side = spec.side.as_deref().ok_or_else(|| {
+            case.error(
+                format!("{key}.side"),
+                "required for type 'cohesive': the volume group that gets the duplicated nodes",
+            )
+        })?;
+        let earlier = splits.iter().find(|s| {
+            let other: &InterfaceSpec = &c.interfaces[s.interface];
+            let other_surfaces = other.split.clone().unwrap_or_else(|| vec![other.surface.clone()]);
+            spec.split.is_none() && other.side.as_deref() == Some(side) && other_surfaces.contains(&spec.surface)
+        });
+        if let Some(s) = earlier {
+            let shared = Split { interface: i, original: s.original.clone(), pairs: s.pairs.clone() };
+            splits.push(shared);
+            continue;
+        }
+        let surfaces = spec.split.clone().unwrap_or_else(|| vec![spec.surface.clone()]);
+        if !surfaces.contains(&spec.surface) {
+            return Err(
+                case.error(format!("{key}.split"), format!("must include the cohesive surface '{}'", spec.surface))
+            );
+        }
+        let split = stiction_interfaces::mesh_split::split_mesh(&mesh, &surfaces, side)
+            .map_err(|e| case.error(&key, e.to_string()))?;
+        let original = std::mem::replace(&mut mesh, split.mesh);
+        splits.push(Split { interface: i, original, pairs: split.pairs });
+    }
+    Ok((mesh, splits))
+}
+
+/// What every interface of a case is built with.
+pub struct InterfaceContext<'a> {
+    pub mesh: &'a Arc<Mesh>,
+    pub kin: Kinematics,
+    pub amplitudes: &'a Amplitudes,
+    pub splits: &'a [Split],
+    /// Largest stiffness scale of the materials (penalty defaults).
+    pub modulus: f64,
+}
+
+/// The contributions of the case's interfaces, and the discrete point layouts by interface.
+pub fn build_interfaces(
+    case: &LoadedCase,
+    ctx: &InterfaceContext<'_>,
+) -> Result<(Vec<Box<dyn Contribution>>, Vec<(String, Vec<DiscretePoint>)>)> {
+    let c = &case.case;
+    let plugin_dirs: Vec<PathBuf> = c.plugin_path.iter().map(|p| case.base_dir().join(p)).collect();
+    let registry = LawRegistry::new(&plugin_dirs);
+    let (mut contributions, mut layouts) = (Vec::new(), Vec::new());
+    for (i, spec) in c.interfaces.iter().enumerate() {
+        let key = format!("interfaces[{i}]");
+        if spec.kind != "rigid-flat" && spec.kind != "cohesive" {
+            return Err(case.error(
+                format!("{key}.type"),
+                format!("unknown interface type '{}' (known: rigid-flat, cohesive)", spec.kind),
+            ));
+        }
+        let group = ctx.mesh.group(&spec.surface).map_err(|e| case.error(format!("{key}.surface"), e.to_string()))?;
+        let face_size = mean_edge_length(ctx.mesh, group)
+            .ok_or_else(|| case.error(format!("{key}.surface"), format!("group '{}' has no faces", spec.surface)))?;
+        let given: Vec<(String, f64)> = spec.parameters.iter().map(|(k, v)| (k.clone(), *v)).collect();
+        let config_file = spec.config_file.as_ref().map(|f| case.base_dir().join(f));
+        let law_context = LawContext { modulus: ctx.modulus, face_size };
+        let law = make_law(&registry, &spec.law, case.base_dir(), &given, config_file.as_deref(), &law_context)
+            .map_err(|m| case.error(format!("{key}.law"), m))?;
+        if spec.kind == "cohesive" {
+            contributions.push(cohesive(case, &key, i, spec, ctx, law, face_size)?);
+        } else {
+            let (flat, layout) = rigid_flat(case, &key, spec, ctx, law)?;
+            contributions.push(flat);
+            layouts.extend(layout.map(|l| (spec.name.clone(), l)));
+        }
+    }
+    Ok((contributions, layouts))
+}
+
+/// Zero-thickness cohesive elements of interface `i` on its split.
+fn cohesive(
+    case: &LoadedCase,
+    key: &str,
+    i: usize,
+    spec: &InterfaceSpec,
+    ctx: &InterfaceContext<'_>,
+    law: Arc<dyn InterfaceLaw>,
+    face_size: f64,
+) -> Result<Box<dyn Contribution>> {
+    let mesh = ctx.mesh;
+    let split = ctx.splits.iter().find(|s| s.interface == i).expect("every cohesive interface was split");
+    let side = mesh
+        .group(spec.side.as_deref().unwrap_or_default())
+        .map_err(|e| case.error(format!("{key}.side"), e.to_string()))?;
+    let finder =
+        BoundaryFinder::new(&mesh.nodes, mesh.blocks_of(side).flat_map(|b| b.cells().map(move |c| (b.cell_type, c))));
+    let nc = mesh.blocks_of(side).next().and_then(|b| b.cell_type.facet()).map(|f| f.n_corners()).unwrap_or(3);
+    if law.gap_dimension() == 3 && spec.shear_stiffness.is_some() {
+        return Err(case.error(
+            format!("{key}.shear_stiffness"),
+            format!(
+                "law '{}' is mixed mode and resists slip itself; shear_stiffness applies to normal-only laws",
+                law.name()
+            ),
+        ));
+    }
+    let shear = spec.shear_stiffness.unwrap_or(100.0 * ctx.modulus / face_size);
+    if !(shear >= 0.0 && shear.is_finite()) {
+        return Err(case.error(format!("{key}.shear_stiffness"), "must be a finite number >= 0"));
+    }
+    let elements = stiction_interfaces::cohesive::CohesiveElements::new(
+        &spec.name,
+        &split.original,
+        &spec.surface,
+        &split.pairs,
+        |b| finder.cell_centroid(&b[..nc]),
+        ctx.kin,
+        law,
+        shear,
+        spec.quadrature_order,
+    )
+    .map_err(|e| case.error(key, e.to_string()))?;
+    Ok(Box::new(elements))
+}
+
+/// A rigid flat against the interface's surface, or at its discrete points (returned too).
+fn rigid_flat(
+    case: &LoadedCase,
+    key: &str,
+    spec: &InterfaceSpec,
+    ctx: &InterfaceContext<'_>,
+    law: Arc<dyn InterfaceLaw>,
+) -> Result<(Box<dyn Contribution>, Option<Vec<DiscretePoint>>)> {
+    let dpn = ctx.kin.dofs_per_node();
+    let normal = match (&spec.normal, ctx.kin) {
+        (None, Kinematics::Solid3D) => [0.0, 0.0, 1.0],
+        (None, Kinematics::Axisymmetric) => [0.0, 1.0, 0.0],
+        (Some(v), _) if v.len() == dpn => [v[0], v[1], if dpn == 3 { v[2] } else { 0.0 }],
+        (Some(_), _) => return Err(case.error(format!("{key}.normal"), format!("needs {dpn} components"))),
+    };
+    if spec.viscosity > 0.0 && case.case.solver.continuation == crate::case::ContinuationSpec::ArcLength {
+        return Err(case.error(
+            format!("{key}.viscosity"),
+            "a viscous regularisation cannot be combined with solver.continuation = \"arc-length\" (the viscous term needs time to move forward; arc length may turn it back): use one of them",
+        ));
+    }
+    let flat_spec = stiction_interfaces::RigidFlatSpec {
+        name: spec.name.clone(),
+        surface: spec.surface.clone(),
+        normal,
+        approach_scale: spec.approach,
+        approach_amplitude: ctx.amplitudes.get(case, format!("{key}.amplitude"), &spec.amplitude)?,
+        initial_gap: spec.initial_gap,
+        extra_order: spec.quadrature_order,
+        viscosity: spec.viscosity,
+    };
+    let (flat, layout) = match &spec.points {
+        None => (stiction_interfaces::RigidFlat::over_surface(ctx.mesh, ctx.kin, flat_spec, law), None),
+        Some(points) => {
+            let (list, source) = discrete_points(case, &format!("{key}.points"), points)?;
+            let flat = stiction_interfaces::RigidFlat::at_points(ctx.mesh, ctx.kin, flat_spec, law, &list, &source);
+            (flat, Some(list))
+        }
+    };
+    Ok((Box::new(flat.map_err(|e| case.error(key, e.to_string()))?), layout))
+}

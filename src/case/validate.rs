@@ -1,0 +1,119 @@
+//! Validation of a parsed case's numbers and cross-references: one place, run by
+//! [`super::load`], so `stiction check` and `stiction run` accept and reject the same inputs.
+//! Errors name the case key.
+
+use super::LoadedCase;
+use crate::error::Result;
+
+/// A finite number.
+fn finite(case: &LoadedCase, key: &str, v: f64) -> Result<()> {
+    if v.is_finite() { Ok(()) } else { Err(case.error(key, format!("must be a finite number, got {v}"))) }
+}
+
+/// A finite number > 0.
+fn positive(case: &LoadedCase, key: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(case.error(key, format!("must be a finite number > 0, got {v}")))
+    }
+}
+
+pub fn validate(case: &LoadedCase) -> Result<()> {
+    solver(case)?;
+    steps(case)?;
+    mesh(case)?;
+    interfaces(case)
+}
+
+fn solver(case: &LoadedCase) -> Result<()> {
+    let s = &case.case.solver;
+    positive(case, "solver.tol_residual", s.tol_residual)?;
+    positive(case, "solver.tol_displacement", s.tol_displacement)?;
+    if s.max_iterations == 0 {
+        return Err(case.error("solver.max_iterations", "must be at least 1"));
+    }
+    if !(s.cut_factor > 0.0 && s.cut_factor < 1.0) {
+        return Err(case.error("solver.cut_factor", format!("must be in (0, 1), got {}", s.cut_factor)));
+    }
+    if !(s.growth_factor >= 1.0 && s.growth_factor.is_finite()) {
+        return Err(
+            case.error("solver.growth_factor", format!("must be a finite number >= 1, got {}", s.growth_factor))
+        );
+    }
+    if s.arc_length_after_cuts == 0 {
+        return Err(case.error("solver.arc_length_after_cuts", "must be at least 1"));
+    }
+    Ok(())
+}
+
+fn steps(case: &LoadedCase) -> Result<()> {
+    let c = &case.case;
+    if c.steps.is_empty() {
+        return Err(case.error("steps", "at least one step is needed"));
+    }
+    let mut previous_end = 0.0;
+    for (i, s) in c.steps.iter().enumerate() {
+        let key = |k: &str| format!("steps[{i}].{k}");
+        finite(case, &key("end_time"), s.end_time)?;
+        let span = s.end_time - previous_end;
+        if !(span > 0.0) {
+            return Err(case.error(key("end_time"), format!("must be after the previous step's end ({previous_end})")));
+        }
+        for (k, v) in [
+            ("initial_increment", s.initial_increment),
+            ("min_increment", s.min_increment),
+            ("max_increment", s.max_increment),
+        ] {
+            if let Some(v) = v {
+                positive(case, &key(k), v)?;
+            }
+        }
+        let minimum = s.min_increment.unwrap_or(1e-6 * span);
+        let initial = s.initial_increment.unwrap_or(0.1 * span).min(span);
+        let maximum = s.max_increment.unwrap_or(span);
+        if initial < minimum {
+            return Err(case.error(key("initial_increment"), format!("{initial} is below min_increment {minimum}")));
+        }
+        if maximum < initial {
+            return Err(case.error(key("max_increment"), format!("{maximum} is below initial_increment {initial}")));
+        }
+        if let Some(name) = &s.until_separated {
+            if !c.interfaces.iter().any(|f| &f.name == name) {
+                return Err(case.error(key("until_separated"), format!("no interface named '{name}'")));
+            }
+        }
+        previous_end = s.end_time;
+    }
+    Ok(())
+}
+
+fn mesh(case: &LoadedCase) -> Result<()> {
+    let m = &case.case.mesh;
+    positive(case, "mesh.size_factor", m.size_factor)?;
+    if m.geo.is_some() && !(m.order == 1 || m.order == 2) {
+        return Err(case.error("mesh.order", format!("must be 1 or 2, got {}", m.order)));
+    }
+    for (k, v) in &m.parameters {
+        finite(case, &format!("mesh.parameters.{k}"), *v)?;
+    }
+    Ok(())
+}
+
+fn interfaces(case: &LoadedCase) -> Result<()> {
+    for (i, f) in case.case.interfaces.iter().enumerate() {
+        let key = |k: &str| format!("interfaces[{i}].{k}");
+        finite(case, &key("approach"), f.approach)?;
+        finite(case, &key("initial_gap"), f.initial_gap)?;
+        if !(f.viscosity >= 0.0 && f.viscosity.is_finite()) {
+            return Err(case.error(key("viscosity"), "must be a finite number >= 0"));
+        }
+        if !(f.max_viscous_share > 0.0 && f.max_viscous_share <= 1.0) {
+            return Err(case.error(key("max_viscous_share"), "must be a fraction in (0, 1]"));
+        }
+        for (k, v) in &f.parameters {
+            finite(case, &format!("interfaces[{i}].parameters.{k}"), *v)?;
+        }
+    }
+    Ok(())
+}

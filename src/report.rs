@@ -1,0 +1,108 @@
+//! The closing lines `stiction run` prints: plain numbers with 4 significant figures, forces
+//! with the SI prefix that keeps them between 1 and 1000 (the Ru cases: uN), areas in the
+//! case's length unit squared, and the case's units stated.
+
+use crate::run::RunSummary;
+
+/// `value` with 4 significant figures, without an exponent for magnitudes 1e-3 .. 1e6.
+pub fn significant(value: f64) -> String {
+    if value == 0.0 || !value.is_finite() {
+        return format!("{value}");
+    }
+    let magnitude = value.abs().log10().floor() as i32;
+    if !(-3..6).contains(&magnitude) {
+        return format!("{value:.3e}");
+    }
+    let decimals = (3 - magnitude).max(0) as usize;
+    format!("{value:.decimals$}")
+}
+
+const PREFIXES: [(&str, f64); 7] =
+    [("f", 1e-15), ("p", 1e-12), ("n", 1e-9), ("u", 1e-6), ("m", 1e-3), ("", 1.0), ("k", 1e3)];
+
+/// A force in `unit` (e.g. "nN"), rescaled to the prefix that puts it in [1, 1000).
+pub fn force(value: f64, unit: &str) -> String {
+    let Some(base) = unit.strip_suffix('N') else {
+        return format!("{} {unit}", significant(value)).trim_end().to_string();
+    };
+    let Some(&(_, factor)) = PREFIXES.iter().find(|(p, _)| *p == base) else {
+        return format!("{} {unit}", significant(value));
+    };
+    let si = value * factor;
+    let best = PREFIXES.iter().rev().find(|(_, f)| si.abs() >= *f).unwrap_or(&PREFIXES[0]);
+    let shown = if value == 0.0 { (unit.to_string(), value) } else { (format!("{}N", best.0), si / best.1) };
+    format!("{} {}", significant(shown.1), shown.0)
+}
+
+/// The lines printed after a run.
+pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
+    let arc = if summary.arc_length_increments > 0 {
+        format!("; {} by arc length through {} limit points", summary.arc_length_increments, summary.limit_points)
+    } else {
+        String::new()
+    };
+    let mut lines = vec![format!(
+        "{}: {} increments ({} cut{arc}), {} Newton iterations, {} factorizations, {} s; {} free dofs; output in {}",
+        summary.case,
+        summary.increments,
+        summary.cut_increments,
+        summary.newton_iterations,
+        summary.factorizations,
+        significant(summary.wall_seconds),
+        summary.n_free_dofs,
+        summary.output_directory.display()
+    )];
+    let (length, force_unit) = (summary.length_unit.as_str(), summary.force_unit.as_str());
+    let area = if length.is_empty() { String::new() } else { format!(" {length}^2") };
+    let at =
+        |a: f64| format!("{}{}", significant(a), if length.is_empty() { String::new() } else { format!(" {length}") });
+    let units = if length.is_empty() && force_unit.is_empty() {
+        "(case units; state them with [units] length and force)".to_string()
+    } else {
+        format!("(case units: length {length}, force {force_unit}; compressive positive)")
+    };
+    lines.push(format!("  interfaces {units}"));
+    for i in &summary.interfaces {
+        if i.kind == "cohesive" {
+            lines.push(format!(
+                "  {}: most tensile force {}, most compressive {}; max contact area {}{area}",
+                i.name,
+                force(i.pull_off_force, force_unit),
+                force(i.max_force, force_unit),
+                significant(i.max_contact_area)
+            ));
+        } else {
+            lines.push(format!(
+                "  {}: max force {} at approach {}; pull-off {} at {}; max real area {}{area}; {} in contact at max",
+                i.name,
+                force(i.max_force, force_unit),
+                at(i.approach_at_max_force),
+                force(i.pull_off_force, force_unit),
+                at(i.approach_at_pull_off),
+                significant(i.max_contact_area),
+                i.n_contact_at_max_force
+            ));
+        }
+    }
+    if summary.interfaces.is_empty() {
+        lines.pop();
+    }
+    lines
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn forces_get_a_readable_prefix_and_four_significant_figures() {
+        assert_eq!(force(22386.0, "nN"), "22.39 uN");
+        assert_eq!(force(-28489.0, "nN"), "-28.49 uN");
+        assert_eq!(force(5.2437, "nN"), "5.244 nN");
+        assert_eq!(force(1.5e7, "nN"), "15.00 mN");
+        assert_eq!(force(0.5, "N"), "500.0 mN");
+        assert_eq!(force(12.0, ""), "12.00");
+        assert_eq!(significant(974.79), "974.8");
+        assert_eq!(significant(0.0250), "0.02500");
+    }
+}
