@@ -1,13 +1,14 @@
 //! Benchmark (not a test): assembly, symbolic and numeric factorization, and solve times for a
 //! tet10 model of about 100k degrees of freedom (unit cube, 16^3 x 6 tets, J2 material, bottom
-//! clamped, top displaced). Run with `cargo bench --bench solver` (add `-- N` for another
+//! clamped, top displaced), with the round-1 factorization (AMD ordering, f64) and the default
+//! (METIS nested dissection, f32 factor with refinement). Run with `cargo bench --bench solver` (add `-- N` for another
 //! cube subdivision).
 
 use std::sync::Arc;
 use std::time::Instant;
 use stiction_core::amplitude::Amplitude;
 use stiction_core::element::Kinematics;
-use stiction_core::linear_solver::{FaerCholesky, LinearSolver};
+use stiction_core::linear_solver::{FaerCholesky, LinearSolver, Ordering, Precision};
 use stiction_core::model::{ElementSet, Model, Prescribed};
 use stiction_elements::{QuadratureChoice, SolidKernel};
 use stiction_materials::J2Plasticity;
@@ -51,36 +52,49 @@ fn main() {
         t_force = t_force.min(t.elapsed().as_secs_f64());
     }
     model.assemble(true).unwrap();
-    let t = Instant::now();
-    let mut solver = FaerCholesky::analyse(model.pattern()).unwrap();
-    let t_symbolic = t.elapsed().as_secs_f64();
-    let mut t_numeric = f64::INFINITY;
-    let mut kind = None;
-    for _ in 0..reps {
-        let t = Instant::now();
-        kind = Some(solver.factorize(model.pattern(), &model.tangent_values).unwrap());
-        t_numeric = t_numeric.min(t.elapsed().as_secs_f64());
-    }
-    let mut rhs: Vec<f64> = model.residual.iter().map(|r| -r).collect();
-    let t = Instant::now();
-    solver.solve_in_place(&mut rhs).unwrap();
-    let t_solve = t.elapsed().as_secs_f64();
     println!(
-        "tet10 cube n = {n}: {} cells, {} nodes, {} free dofs, {} matrix entries, {} factor entries ({kind:?})",
+        "tet10 cube n = {n}: {} cells, {} nodes, {} free dofs, {} matrix entries",
         model.sets[0].n_cells(),
         mesh.nodes.len(),
         model.n_free(),
         model.pattern().nnz(),
-        solver.factor_nnz()
     );
     println!("threads (rayon): {}", rayon_threads());
     println!("mesh generation          {t_mesh:8.3} s");
     println!("pattern + slot maps      {t_pattern:8.3} s  (once per topology)");
     println!("assembly, force+tangent  {t_assembly:8.3} s  (best of {reps})");
     println!("assembly, force only     {t_force:8.3} s  (best of {reps})");
-    println!("symbolic factorization   {t_symbolic:8.3} s  (once per topology)");
-    println!("numeric factorization    {t_numeric:8.3} s  (best of {reps})");
-    println!("solve                    {t_solve:8.3} s");
+    // the round-1 factorization (AMD, f64) and the default (nested dissection, f32 + refinement)
+    for (ordering, precision) in [(Ordering::Amd, Precision::Double), (Ordering::NestedDissection, Precision::Single)] {
+        let t = Instant::now();
+        let mut solver = FaerCholesky::analyse_with_precision(model.pattern(), ordering, precision).unwrap();
+        let t_symbolic = t.elapsed().as_secs_f64();
+        let mut t_numeric = f64::INFINITY;
+        let mut kind = None;
+        for _ in 0..reps {
+            let t = Instant::now();
+            kind = Some(solver.factorize(model.pattern(), &model.tangent_values).unwrap());
+            t_numeric = t_numeric.min(t.elapsed().as_secs_f64());
+        }
+        let b: Vec<f64> = model.residual.iter().map(|r| -r).collect();
+        let mut x = b.clone();
+        let t = Instant::now();
+        solver.solve_in_place(&mut x).unwrap();
+        let t_solve = t.elapsed().as_secs_f64();
+        let mut x_approx = b.clone();
+        let t = Instant::now();
+        solver.solve_approximately(&mut x_approx).unwrap();
+        let t_approx = t.elapsed().as_secs_f64();
+        let mut ax = vec![0.0; b.len()];
+        model.pattern().multiply(&model.tangent_values, &x, &mut ax);
+        let residual = ax.iter().zip(&b).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt()
+            / b.iter().map(|v| v * v).sum::<f64>().sqrt();
+        println!("{ordering:?}, {precision:?}: {} factor entries ({kind:?})", solver.factor_nnz());
+        println!("  symbolic factorization {t_symbolic:8.3} s  (once per topology)");
+        println!("  numeric factorization  {t_numeric:8.3} s  (best of {reps})");
+        println!("  solve (exact)          {t_solve:8.3} s  (relative residual {residual:.1e})");
+        println!("  solve (factor only)    {t_approx:8.3} s");
+    }
 }
 
 fn rayon_threads() -> usize {

@@ -3,12 +3,12 @@
 //! to the core's step driver.
 
 use crate::build::{BuiltModel, build};
-use crate::case::{ContinuationSpec, LoadedCase};
+use crate::case::{ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec};
 use crate::error::{Result, StictionError};
 use std::path::PathBuf;
 use stiction_core::CoreError;
-use stiction_core::linear_solver::{FaerCholesky, LinearSolver};
-use stiction_core::nonlinear::NewtonSolver;
+use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
+use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
 use stiction_core::path::{RunPlan, run_steps};
 use stiction_core::record::{EventsRecorder, HistoryRecorder, Observer, SummaryWriter, VtkRecorder};
 
@@ -83,9 +83,20 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
             .then_some(case.case.solver.arc_length_after_cuts),
         interfaces: built.interfaces.clone(),
     };
-    let mut linear = FaerCholesky::analyse(built.model.pattern())?;
-    let mut nonlinear = NewtonSolver { settings: built.newton.clone() };
-    let summary = run_steps(&mut built.model, &plan, &mut linear, &mut nonlinear, &mut observers)?;
+    let ordering = match case.case.solver.ordering {
+        OrderingSpec::NestedDissection => Ordering::NestedDissection,
+        OrderingSpec::Amd => Ordering::Amd,
+    };
+    let precision = match case.case.solver.factor_precision {
+        PrecisionSpec::Single => Precision::Single,
+        PrecisionSpec::Double => Precision::Double,
+    };
+    let mut linear = FaerCholesky::analyse_with_precision(built.model.pattern(), ordering, precision)?;
+    let mut nonlinear: Box<dyn NonlinearSolver> = match case.case.solver.method {
+        MethodSpec::QuasiNewton => Box::new(QuasiNewtonSolver::new(built.newton.clone())),
+        MethodSpec::Newton => Box::new(NewtonSolver { settings: built.newton.clone() }),
+    };
+    let summary = run_steps(&mut built.model, &plan, &mut linear, nonlinear.as_mut(), &mut observers)?;
     for w in &summary.warnings {
         eprintln!("warning: {w}");
     }

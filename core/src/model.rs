@@ -117,7 +117,6 @@ impl ElementSet {
         let committed = &self.state_committed;
         let slots = &self.slots;
         let set_name = &self.name;
-        let single = jobs.len() == 1;
         let run = |(first, last, state_trial, stress): (usize, usize, &mut [f64], &mut [Stress]),
                    force: &mut [f64],
                    values: &mut [f64]|
@@ -166,26 +165,31 @@ impl ElementSet {
             }
             Ok(())
         };
-        if single {
-            let job = jobs.pop().unwrap();
-            run(job, force_total, values_total.as_deref_mut().unwrap_or(&mut []))?;
-        } else {
-            let partials: Vec<Result<(Vec<f64>, Vec<f64>)>> = jobs
-                .into_par_iter()
-                .map(|job| {
-                    let mut force = vec![0.0; n_dofs];
-                    let mut values = if with_tangent { vec![0.0; nnz] } else { Vec::new() };
-                    run(job, &mut force, &mut values).map(|_| (force, values))
-                })
-                .collect();
-            for part in partials {
-                let (force, values) = part?;
-                for (a, b) in force_total.iter_mut().zip(&force) {
-                    *a += b;
-                }
-                if let Some(total) = values_total.as_deref_mut() {
-                    total.par_iter_mut().zip(values.par_iter()).for_each(|(a, b)| *a += b);
-                }
+        // the first chunk accumulates straight into the totals; the others into their own
+        // buffers, added afterwards (one buffer fewer than chunks: less peak memory)
+        let mut jobs = jobs.into_iter();
+        let first_job = jobs.next().expect("at least one chunk");
+        let rest: Vec<_> = jobs.collect();
+        let (first, partials) = rayon::join(
+            || run(first_job, &mut *force_total, values_total.as_deref_mut().unwrap_or(&mut [])),
+            || -> Vec<Result<(Vec<f64>, Vec<f64>)>> {
+                rest.into_par_iter()
+                    .map(|job| {
+                        let mut force = vec![0.0; n_dofs];
+                        let mut values = if with_tangent { vec![0.0; nnz] } else { Vec::new() };
+                        run(job, &mut force, &mut values).map(|_| (force, values))
+                    })
+                    .collect()
+            },
+        );
+        first?;
+        for part in partials {
+            let (force, values) = part?;
+            for (a, b) in force_total.iter_mut().zip(&force) {
+                *a += b;
+            }
+            if let Some(total) = values_total.as_deref_mut() {
+                total.par_iter_mut().zip(values.par_iter()).for_each(|(a, b)| *a += b);
             }
         }
         Ok(())

@@ -320,9 +320,49 @@ pub struct SolverSpec {
     /// resumes beyond the point that failed).
     #[serde(default)]
     pub continuation: ContinuationSpec,
+    /// Nonlinear solver: "quasi-newton" (default: BFGS on a reused factorization, refactorized
+    /// when convergence slows) or "newton" (full Newton: a factorization every iteration).
+    #[serde(default)]
+    pub method: MethodSpec,
+    /// Precision of the numeric factor: "single" (default: an f32 factor, half the memory;
+    /// exact solves by iterative refinement, and the quasi-Newton method uses it as it is) or
+    /// "double".
+    #[serde(default)]
+    pub factor_precision: PrecisionSpec,
+    /// Fill-reducing ordering of the sparse factorization: "nested-dissection" (default, METIS
+    /// on the node graph) or "amd" (approximate minimum degree).
+    #[serde(default)]
+    pub ordering: OrderingSpec,
     /// Consecutive cuts after which arc-length continuation takes over (default 2).
     #[serde(default = "default_arc_length_after_cuts")]
     pub arc_length_after_cuts: usize,
+}
+
+/// Nonlinear solver.
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum MethodSpec {
+    #[default]
+    QuasiNewton,
+    Newton,
+}
+
+/// Precision of the numeric factor.
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum PrecisionSpec {
+    #[default]
+    Single,
+    Double,
+}
+
+/// Fill-reducing ordering.
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum OrderingSpec {
+    #[default]
+    NestedDissection,
+    Amd,
 }
 
 /// Limit-point crossing method.
@@ -390,7 +430,8 @@ pub fn defaults_help() -> String {
          (0 -> 1 over t in [0, 1]); steps[].initial_increment = step/10, min_increment = 1e-6 step, \
          max_increment = step, output_every = 1; solver.max_iterations = {}, tol_residual = {:e}, \
          tol_displacement = {:e}, line_search = {}, threads = 0 (all cores), cut_factor = {}, \
-         growth_factor = {}, continuation = \"none\" (or \"arc-length\"), arc_length_after_cuts = {}; \
+         growth_factor = {}, continuation = \"none\" (or \"arc-length\"), arc_length_after_cuts = {}, \
+         method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"); \
          interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
          output.directory = out/<name>, output.vtk = true.",
         n.max_iterations,

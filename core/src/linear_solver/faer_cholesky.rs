@@ -1,4 +1,4 @@
-//! Sparse direct solution with faer (the default [`LinearSolver`]): the symbolic Cholesky analysis (AMD ordering, elimination
+//! Sparse direct solution with faer (the default [`LinearSolver`]): the symbolic Cholesky analysis (ordering, elimination
 //! tree, supernodes) runs once per sparsity pattern; each Newton iteration refactorizes
 //! numerically into buffers owned here, and the workspace is reused.
 //!
@@ -6,69 +6,52 @@
 //! tangent is not positive definite (a softening interface law, an unstable adhesive branch)
 //! the same symbolic structure is used for an LDL^T factorization.
 
+use super::ordering::{Ordering, nested_dissection};
 use super::{FactorKind, LinearSolver};
 use crate::error::{CoreError, Result};
 use crate::sparse::SparsityPattern;
 use dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
-/// A reusable sparse symmetric direct solver for one sparsity pattern.
-pub struct FaerCholesky {
-    symbolic: SymbolicCholesky<usize>,
-    factor_values: Vec<f64>,
-    workspace: MemBuffer,
+/// Precision of the numeric factor.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Precision {
+    /// f64 factor: exact solves.
+    #[default]
+    Double,
+    /// f32 factor (half the memory and about half the time); exact solves by iterative
+    /// refinement in double precision, x += L^-T L^-1 (b - A x), until ||b - A x|| <= 1e-12 ||b||.
+    Single,
+}
+
+/// A numeric factor in precision T on the shared symbolic structure.
+struct Numeric<T> {
+    values: Vec<T>,
     kind: Option<FactorKind>,
-    par: Par,
 }
 
-impl FaerCholesky {
-    /// The kind of the last successful factorization.
-    pub fn last_kind(&self) -> Option<FactorKind> {
-        self.kind
-    }
-}
-
-impl LinearSolver for FaerCholesky {
-    fn analyse(pattern: &SparsityPattern) -> Result<Self> {
-        let par = Par::rayon(0);
-        let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
-        let symbolic =
-            factorize_symbolic_cholesky(sym, Side::Lower, SymmetricOrdering::Amd, CholeskySymbolicParams::default())
-                .map_err(|e| CoreError::Factorization(format!("symbolic analysis failed: {e:?}")))?;
-        let req = StackReq::any_of(&[
-            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-            symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
-            symbolic.solve_in_place_scratch::<f64>(1, par),
-        ]);
-        let workspace = MemBuffer::try_new(req)
-            .map_err(|_| CoreError::Factorization("out of memory for the factorization workspace".into()))?;
-        let factor_values = vec![0.0; symbolic.len_val()];
-        Ok(Self { symbolic, factor_values, workspace, kind: None, par })
-    }
-
-    fn factor_nnz(&self) -> usize {
-        self.factor_values.len()
-    }
-
-    fn factorize(&mut self, pattern: &SparsityPattern, values: &[f64]) -> Result<FactorKind> {
-        if values.iter().any(|v| !v.is_finite()) {
-            return Err(CoreError::NonFinite("tangent matrix".into()));
-        }
-        let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
-        let a = SparseColMatRef::new(sym, values);
-        let stack = MemStack::new(&mut self.workspace);
-        let llt = self.symbolic.factorize_numeric_llt(
-            &mut self.factor_values,
+impl<T: faer::traits::ComplexField + Copy> Numeric<T> {
+    fn factorize(
+        &mut self,
+        symbolic: &SymbolicCholesky<usize>,
+        a: SparseColMatRef<'_, usize, T>,
+        par: Par,
+        workspace: &mut MemBuffer,
+    ) -> Result<FactorKind> {
+        let stack = MemStack::new(workspace);
+        let llt = symbolic.factorize_numeric_llt(
+            &mut self.values,
             a,
             Side::Lower,
             LltRegularization::default(),
-            self.par,
+            par,
             stack,
             Default::default(),
         );
@@ -76,14 +59,14 @@ impl LinearSolver for FaerCholesky {
             self.kind = Some(FactorKind::Llt);
             return Ok(FactorKind::Llt);
         }
-        let stack = MemStack::new(&mut self.workspace);
-        self.symbolic
+        let stack = MemStack::new(workspace);
+        symbolic
             .factorize_numeric_ldlt(
-                &mut self.factor_values,
+                &mut self.values,
                 a,
                 Side::Lower,
                 LdltRegularization::default(),
-                self.par,
+                par,
                 stack,
                 Default::default(),
             )
@@ -95,16 +78,171 @@ impl LinearSolver for FaerCholesky {
         Ok(FactorKind::Ldlt)
     }
 
-    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+    fn solve(
+        &self,
+        symbolic: &SymbolicCholesky<usize>,
+        rhs: &mut [T],
+        par: Par,
+        workspace: &mut MemBuffer,
+    ) -> Result<()> {
         let n = rhs.len();
         let kind = self.kind.ok_or_else(|| CoreError::Factorization("solve before factorization".into()))?;
-        let stack = MemStack::new(&mut self.workspace);
+        let stack = MemStack::new(workspace);
         let rhs_mat = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match kind {
-            FactorKind::Llt => faer::sparse::linalg::cholesky::LltRef::new(&self.symbolic, &self.factor_values)
-                .solve_in_place_with_conj(Conj::No, rhs_mat, self.par, stack),
-            FactorKind::Ldlt => faer::sparse::linalg::cholesky::LdltRef::new(&self.symbolic, &self.factor_values)
-                .solve_in_place_with_conj(Conj::No, rhs_mat, self.par, stack),
+            FactorKind::Llt => faer::sparse::linalg::cholesky::LltRef::new(symbolic, &self.values)
+                .solve_in_place_with_conj(Conj::No, rhs_mat, par, stack),
+            FactorKind::Ldlt => faer::sparse::linalg::cholesky::LdltRef::new(symbolic, &self.values)
+                .solve_in_place_with_conj(Conj::No, rhs_mat, par, stack),
+        }
+        Ok(())
+    }
+}
+
+/// The factor and, for a single-precision one, what refinement needs.
+enum Factor {
+    Double(Numeric<f64>),
+    Single {
+        numeric: Numeric<f32>,
+        /// The matrix factored (f64, for the refinement residual) and its f32 copy.
+        matrix: Vec<f64>,
+        matrix_f32: Vec<f32>,
+        pattern: SparsityPattern,
+    },
+}
+
+/// A reusable sparse symmetric direct solver for one sparsity pattern.
+pub struct FaerCholesky {
+    symbolic: SymbolicCholesky<usize>,
+    factor: Factor,
+    workspace: MemBuffer,
+    par: Par,
+}
+
+/// Refinement stops at this relative residual, or after this many corrections.
+const REFINEMENT_TOLERANCE: f64 = 1e-12;
+const MAX_REFINEMENTS: usize = 10;
+
+impl FaerCholesky {
+    /// Symbolic analysis of `pattern` with the given fill-reducing ordering (double precision).
+    pub fn analyse_with(pattern: &SparsityPattern, ordering: Ordering) -> Result<Self> {
+        Self::analyse_with_precision(pattern, ordering, Precision::Double)
+    }
+
+    /// Symbolic analysis of `pattern` with the given ordering and factor precision.
+    pub fn analyse_with_precision(pattern: &SparsityPattern, ordering: Ordering, precision: Precision) -> Result<Self> {
+        let par = Par::rayon(0);
+        let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
+        let permutation = match ordering {
+            Ordering::Amd => None,
+            Ordering::NestedDissection => Some(nested_dissection(pattern)?),
+        };
+        let faer_ordering = match &permutation {
+            None => SymmetricOrdering::Amd,
+            Some((forward, inverse)) => SymmetricOrdering::Custom(PermRef::new_checked(forward, inverse, pattern.n)),
+        };
+        let symbolic = factorize_symbolic_cholesky(sym, Side::Lower, faer_ordering, CholeskySymbolicParams::default())
+            .map_err(|e| CoreError::Factorization(format!("symbolic analysis failed: {e:?}")))?;
+        let req = StackReq::any_of(&[
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+            symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, par),
+        ]);
+        let workspace = MemBuffer::try_new(req)
+            .map_err(|_| CoreError::Factorization("out of memory for the factorization workspace".into()))?;
+        let factor = match precision {
+            Precision::Double => Factor::Double(Numeric { values: vec![0.0; symbolic.len_val()], kind: None }),
+            Precision::Single => Factor::Single {
+                numeric: Numeric { values: vec![0.0; symbolic.len_val()], kind: None },
+                matrix: Vec::new(),
+                matrix_f32: Vec::new(),
+                pattern: pattern.clone(),
+            },
+        };
+        Ok(Self { symbolic, factor, workspace, par })
+    }
+
+    /// The kind of the last successful factorization.
+    pub fn last_kind(&self) -> Option<FactorKind> {
+        match &self.factor {
+            Factor::Double(n) => n.kind,
+            Factor::Single { numeric, .. } => numeric.kind,
+        }
+    }
+}
+
+impl LinearSolver for FaerCholesky {
+    fn analyse(pattern: &SparsityPattern) -> Result<Self> {
+        Self::analyse_with(pattern, Ordering::default())
+    }
+
+    fn factor_nnz(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    fn factorize(&mut self, pattern: &SparsityPattern, values: &[f64]) -> Result<FactorKind> {
+        if values.iter().any(|v| !v.is_finite()) {
+            return Err(CoreError::NonFinite("tangent matrix".into()));
+        }
+        let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
+        match &mut self.factor {
+            Factor::Double(numeric) => {
+                numeric.factorize(&self.symbolic, SparseColMatRef::new(sym, values), self.par, &mut self.workspace)
+            }
+            Factor::Single { numeric, matrix, matrix_f32, .. } => {
+                matrix.clear();
+                matrix.extend_from_slice(values);
+                matrix_f32.clear();
+                matrix_f32.extend(values.iter().map(|&v| v as f32));
+                let a = SparseColMatRef::new(sym, &matrix_f32[..]);
+                numeric.factorize(&self.symbolic, a, self.par, &mut self.workspace)
+            }
+        }
+    }
+
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+        match &self.factor {
+            Factor::Double(numeric) => numeric.solve(&self.symbolic, rhs, self.par, &mut self.workspace)?,
+            Factor::Single { numeric, matrix, pattern, .. } => {
+                let b = rhs.to_vec();
+                let b_norm = crate::vector::norm(&b);
+                let mut x = vec![0.0; b.len()];
+                let mut r = b.clone();
+                let mut r32 = vec![0.0f32; b.len()];
+                let mut ax = vec![0.0; b.len()];
+                for _ in 0..=MAX_REFINEMENTS {
+                    for (s, d) in r32.iter_mut().zip(&r) {
+                        *s = *d as f32;
+                    }
+                    numeric.solve(&self.symbolic, &mut r32, self.par, &mut self.workspace)?;
+                    for (xi, c) in x.iter_mut().zip(&r32) {
+                        *xi += *c as f64;
+                    }
+                    pattern.multiply(matrix, &x, &mut ax);
+                    for ((ri, bi), ai) in r.iter_mut().zip(&b).zip(&ax) {
+                        *ri = bi - ai;
+                    }
+                    if !(crate::vector::norm(&r) > REFINEMENT_TOLERANCE * b_norm) {
+                        break;
+                    }
+                }
+                rhs.copy_from_slice(&x);
+            }
+        }
+        if rhs.iter().any(|v| !v.is_finite()) {
+            return Err(CoreError::NonFinite("solution of the linear system (singular tangent?)".into()));
+        }
+        Ok(())
+    }
+
+    fn solve_approximately(&mut self, rhs: &mut [f64]) -> Result<()> {
+        let Factor::Single { numeric, .. } = &self.factor else {
+            return self.solve_in_place(rhs);
+        };
+        let mut r32: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
+        numeric.solve(&self.symbolic, &mut r32, self.par, &mut self.workspace)?;
+        for (d, s) in rhs.iter_mut().zip(&r32) {
+            *d = *s as f64;
         }
         if rhs.iter().any(|v| !v.is_finite()) {
             return Err(CoreError::NonFinite("solution of the linear system (singular tangent?)".into()));
@@ -132,16 +270,19 @@ mod tests {
                     values[p.slot(i + 1, i).unwrap()] = -1.0;
                 }
             }
-            let mut solver = FaerCholesky::analyse(&p).unwrap();
-            let kind = solver.factorize(&p, &values).unwrap();
-            assert_eq!(kind, if shift > 0.0 { FactorKind::Llt } else { FactorKind::Ldlt });
-            let b: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
-            let mut x = b.clone();
-            solver.solve_in_place(&mut x).unwrap();
-            let mut ax = vec![0.0; n];
-            p.multiply(&values, &x, &mut ax);
-            let err = ax.iter().zip(&b).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-            assert!(err < 1e-10, "shift {shift}: residual {err}");
+            for precision in [Precision::Double, Precision::Single] {
+                let mut solver =
+                    FaerCholesky::analyse_with_precision(&p, Ordering::NestedDissection, precision).unwrap();
+                let kind = solver.factorize(&p, &values).unwrap();
+                assert_eq!(kind, if shift > 0.0 { FactorKind::Llt } else { FactorKind::Ldlt });
+                let b: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
+                let mut x = b.clone();
+                solver.solve_in_place(&mut x).unwrap();
+                let mut ax = vec![0.0; n];
+                p.multiply(&values, &x, &mut ax);
+                let err = ax.iter().zip(&b).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+                assert!(err < 1e-10, "shift {shift}, {precision:?}: residual {err}");
+            }
         }
     }
 }

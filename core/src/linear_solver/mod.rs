@@ -9,8 +9,10 @@
 //! is a new implementation of this trait.
 
 mod faer_cholesky;
+pub mod ordering;
 
-pub use faer_cholesky::FaerCholesky;
+pub use faer_cholesky::{FaerCholesky, Precision};
+pub use ordering::Ordering;
 
 use crate::error::Result;
 use crate::sparse::SparsityPattern;
@@ -30,8 +32,13 @@ pub trait LinearSolver {
         Self: Sized;
     /// Numeric factorization of the matrix with `values` on `pattern`.
     fn factorize(&mut self, pattern: &SparsityPattern, values: &[f64]) -> Result<FactorKind>;
-    /// Solves A x = b in place (b becomes x) with the last factorization.
+    /// Solves A x = b in place (b becomes x) with the last factorization, to double precision.
     fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()>;
+    /// x ~ A^-1 b with the factor alone (no refinement of a reduced-precision factor): for
+    /// methods that use the factor as a preconditioner. The default is the exact solve.
+    fn solve_approximately(&mut self, rhs: &mut [f64]) -> Result<()> {
+        self.solve_in_place(rhs)
+    }
     /// Stored entries of the factor (memory and cost measure).
     fn factor_nnz(&self) -> usize;
 }

@@ -76,3 +76,32 @@ impl NewtonSettings {
             && (correction <= self.tol_displacement * size || self.residual_negligible(residual, force_scale))
     }
 }
+
+/// The state of one iteration as the convergence test sees it.
+pub(crate) struct IterationCheck {
+    pub residual: f64,
+    pub force_scale: f64,
+    pub converged: bool,
+}
+
+/// Applies the test at a fixed-time iteration: ||r|| is recorded in `residual_norms`; at
+/// iteration 0 only a negligible residual counts (no correction has been made yet); the
+/// increment size is ||u - u_start|| and the correction `correction` (the last step taken).
+pub(crate) fn check_iteration(
+    settings: &NewtonSettings,
+    problem: &dyn crate::problem::NonlinearProblem,
+    scales: ReferenceScales,
+    iteration: usize,
+    correction: &[f64],
+    start: &[f64],
+    residual_norms: &mut Vec<f64>,
+) -> IterationCheck {
+    let residual = crate::vector::norm(problem.residual());
+    let force_scale = settings.force_scale(problem.force_norm(), scales);
+    residual_norms.push(residual);
+    let converged = (iteration > 0 || settings.residual_negligible(residual, force_scale)) && {
+        let step = crate::vector::distance(problem.solution(), start);
+        settings.converged(residual, force_scale, crate::vector::norm(correction), step, scales)
+    };
+    IterationCheck { residual, force_scale, converged }
+}

@@ -6,9 +6,11 @@
 pub mod arc_length;
 pub mod convergence;
 pub mod newton;
+pub mod quasi_newton;
 
 pub use convergence::{NewtonSettings, ReferenceScales};
 pub use newton::{NewtonSolver, solve_increment};
+pub use quasi_newton::QuasiNewtonSolver;
 
 use crate::error::CoreError;
 use crate::linear_solver::LinearSolver;

@@ -1,12 +1,12 @@
 //! Full Newton-Raphson with the consistent tangent and a backtracking line search: one
 //! factorization per iteration. Convergence: [`NewtonSettings::converged`].
 
-use super::convergence::{NewtonSettings, ReferenceScales};
+use super::convergence::{NewtonSettings, ReferenceScales, check_iteration};
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
 use crate::error::Result;
 use crate::linear_solver::LinearSolver;
 use crate::problem::NonlinearProblem;
-use crate::vector::{distance, norm};
+use crate::vector::norm;
 use std::time::Instant;
 
 /// Full Newton (the default nonlinear solver).
@@ -49,16 +49,12 @@ pub fn solve_increment(
     report.assembly_seconds += timer.elapsed().as_secs_f64();
     let mut du = vec![0.0; problem.n_free()];
     for iteration in 0..=settings.max_iterations {
-        let r_norm = norm(problem.residual());
-        let force_scale = settings.force_scale(problem.force_norm(), scales);
-        report.residual_norms.push(r_norm);
-        if iteration > 0 || settings.residual_negligible(r_norm, force_scale) {
-            let step_norm = distance(problem.solution(), &start_u);
-            if settings.converged(r_norm, force_scale, norm(&du), step_norm, scales) {
-                report.iterations = iteration;
-                return Ok(report);
-            }
+        let check = check_iteration(&settings, problem, scales, iteration, &du, &start_u, &mut report.residual_norms);
+        if check.converged {
+            report.iterations = iteration;
+            return Ok(report);
         }
+        let r_norm = check.residual;
         if iteration == settings.max_iterations {
             break;
         }
@@ -73,7 +69,7 @@ pub fn solve_increment(
         linear.solve_in_place(&mut du)?;
         report.solve_seconds += timer.elapsed().as_secs_f64();
         let timer = Instant::now();
-        let alpha = line_search(problem, &du, r_norm, settings);
+        let alpha = line_search(problem, &du, r_norm, settings, true);
         report.assembly_seconds += timer.elapsed().as_secs_f64();
         let alpha = alpha?;
         for d in du.iter_mut() {
@@ -84,17 +80,24 @@ pub fn solve_increment(
 }
 
 /// Moves the problem along `du` from the state with residual norm `r_norm` and returns the
-/// step length alpha; the problem is left assembled (with tangent) at u + alpha du.
+/// step length alpha; the problem is left assembled at u + alpha du (with the tangent when
+/// `tangent_after`).
 ///
 /// The full step is taken when it reduces ||r||; otherwise (with line search on) alpha is
 /// chosen by a quadratic model of ||r(u + alpha du)||^2, safeguarded to [0.1, 0.5] of the last
 /// trial, until ||r|| < (1 - 1e-4 alpha) r_norm. If no trial succeeds the full step is kept:
 /// quadratic convergence may still follow (and a material failure at the full step is
 /// reported as such).
-fn line_search(problem: &mut dyn NonlinearProblem, du: &[f64], r_norm: f64, settings: &NewtonSettings) -> Result<f64> {
+pub(crate) fn line_search(
+    problem: &mut dyn NonlinearProblem,
+    du: &[f64],
+    r_norm: f64,
+    settings: &NewtonSettings,
+    tangent_after: bool,
+) -> Result<f64> {
     let mut alpha = 1.0;
     problem.add_to_free(du, alpha);
-    let first = problem.assemble(true);
+    let first = problem.assemble(tangent_after);
     let mut accepted = first.is_ok() && norm(problem.residual()) < r_norm * (1.0 - 1e-4);
     if !accepted && settings.line_search {
         let mut previous = alpha;
@@ -117,14 +120,14 @@ fn line_search(problem: &mut dyn NonlinearProblem, du: &[f64], r_norm: f64, sett
             }
         }
         if accepted {
-            problem.assemble(true)?;
+            problem.assemble(tangent_after)?;
         }
     } else if let Err(e) = first {
         return Err(e);
     }
     if !accepted {
         problem.add_to_free(du, 1.0 - alpha);
-        problem.assemble(true)?;
+        problem.assemble(tangent_after)?;
     }
     // (after a failed search the full step is applied but the last trial alpha is returned:
     // the correction the next convergence test sees is alpha du, as it always was)
