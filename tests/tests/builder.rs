@@ -9,7 +9,7 @@ const CASE: &str = "cases/validation/two-blocks-cohesive.toml";
 #[test]
 fn step_plans_take_their_defaults_from_each_step_span() {
     let (_, built) =
-        build_case(CASE, &["steps.0.end_time=2.0", "steps.1.end_time=2.5", "steps.1.until_separated=\"interface\""]);
+        build_case(CASE, &["steps.0.end_time=2.0", "steps.1={ end_time = 2.5, until_separated = \"interface\" }"]);
     assert_eq!(built.steps.len(), 2);
     let (first, second) = (&built.steps[0].incrementation, &built.steps[1].incrementation);
     // the case gives initial_increment = 1; otherwise initial = span / 10, minimum = 1e-6 span,
