@@ -146,15 +146,21 @@ impl NonlinearSolver for QuasiNewtonSolver {
         if self.newton_only {
             return super::newton::solve_increment(problem, linear, t, &self.settings, scales);
         }
-        let mut result = self.iterate(problem, linear, t, scales);
+        let mut quasi = IncrementReport::default();
+        let mut result = self.iterate(problem, linear, t, scales, &mut quasi).map(|()| quasi.clone());
         if let Err(IncrementFailure::Diverged { iterations, .. }) = result {
             // not a crawl, not a cut: the same increment by full Newton from the committed
-            // state, and full Newton for the rest of the run (the path has become hard)
+            // state, and full Newton for the rest of the run (the path has become hard); the
+            // report counts both attempts
             self.newton_only = true;
             problem.rollback();
             result = super::newton::solve_increment(problem, linear, t, &self.settings, scales);
             if let Ok(report) = &mut result {
                 report.iterations += iterations;
+                report.factorizations += quasi.factorizations;
+                report.assembly_seconds += quasi.assembly_seconds;
+                report.factorization_seconds += quasi.factorization_seconds;
+                report.solve_seconds += quasi.solve_seconds;
             }
         }
         // a failed increment may have left a factor of a state far from the next attempt's
@@ -191,9 +197,9 @@ impl QuasiNewtonSolver {
         linear: &mut dyn LinearSolver,
         t: f64,
         scales: ReferenceScales,
-    ) -> std::result::Result<IncrementReport, IncrementFailure> {
+        report: &mut IncrementReport,
+    ) -> std::result::Result<(), IncrementFailure> {
         let settings = self.settings.clone();
-        let mut report = IncrementReport::default();
         let start_u: Vec<f64> = problem.solution().to_vec();
         problem.set_time(t);
         let timer = Instant::now();
@@ -201,7 +207,7 @@ impl QuasiNewtonSolver {
         problem.assemble(with_tangent)?;
         report.assembly_seconds += timer.elapsed().as_secs_f64();
         if with_tangent {
-            self.refactorize(problem, linear, &mut report, false)?;
+            self.refactorize(problem, linear, report, false)?;
         }
         let n = problem.n_free();
         let mut pairs = Pairs::default();
@@ -211,7 +217,7 @@ impl QuasiNewtonSolver {
                 check_iteration(&settings, problem, scales, iteration, &du, &start_u, &mut report.residual_norms);
             if check.converged {
                 report.iterations = iteration;
-                return Ok(report);
+                return Ok(());
             }
             let (r_norm, force_scale) = (check.residual, check.force_scale);
             if iteration == settings.max_iterations {
@@ -226,7 +232,7 @@ impl QuasiNewtonSolver {
                     || rate > self.slow_ratio
                     || self.costs.refactorize_pays(rate, r_norm, target, budget)
                 {
-                    self.refactorize(problem, linear, &mut report, true)?;
+                    self.refactorize(problem, linear, report, true)?;
                     pairs.clear();
                 }
             }
