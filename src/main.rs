@@ -1,7 +1,7 @@
 //! The `stiction` command-line program.
 
 use clap::{Parser, Subcommand};
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use stiction::case;
@@ -268,8 +268,12 @@ fn main() -> ExitCode {
         Command::Run { case, out, sets, quiet } => (|| {
             let options = RunOptions { out, progress: !quiet && std::io::stderr().is_terminal() };
             for summary in stiction::sweep::run_sweep(&case, &sets, &options)? {
+                // a closed stdout (e.g. `| head -1`) is not an error of the run
+                let mut out = std::io::stdout().lock();
                 for line in stiction::report::summary_lines(&summary) {
-                    println!("{line}");
+                    if writeln!(out, "{line}").is_err() {
+                        break;
+                    }
                 }
             }
             Ok(())
