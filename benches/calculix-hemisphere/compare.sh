@@ -9,10 +9,14 @@
 # CPU, peak memory, Newton iterations and the largest relative force difference per increment.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
-out="${1:-$root/out/calculix-hemisphere}"
+out="$root/out/calculix-hemisphere"
 baseline=0
-[ "${2:-}" = "--baseline" ] || [ "${1:-}" = "--baseline" ] && baseline=1
-[ "$out" = "--baseline" ] && out="$root/out/calculix-hemisphere"
+for arg in "$@"; do
+  case "$arg" in
+    --baseline) baseline=1 ;;
+    *) out="$arg" ;;
+  esac
+done
 shared="${SHARED_BENCH:-$root/../shared/bench/calculix-hemisphere}"
 command -v /usr/bin/time >/dev/null || { echo "needs GNU time (apt-get install time)" >&2; exit 2; }
 mkdir -p "$out"

@@ -146,23 +146,26 @@ impl NonlinearSolver for QuasiNewtonSolver {
         if self.newton_only {
             return super::newton::solve_increment(problem, linear, t, &self.settings, scales);
         }
-        let mut quasi = IncrementReport::default();
-        let mut result = self.iterate(problem, linear, t, scales, &mut quasi).map(|()| quasi.clone());
-        if let Err(IncrementFailure::Diverged { iterations, .. }) = result {
-            // not a crawl, not a cut: the same increment by full Newton from the committed
-            // state, and full Newton for the rest of the run (the path has become hard); the
-            // report counts both attempts
-            self.newton_only = true;
-            problem.rollback();
-            result = super::newton::solve_increment(problem, linear, t, &self.settings, scales);
-            if let Ok(report) = &mut result {
-                report.iterations += iterations;
-                report.factorizations += quasi.factorizations;
-                report.assembly_seconds += quasi.assembly_seconds;
-                report.factorization_seconds += quasi.factorization_seconds;
-                report.solve_seconds += quasi.solve_seconds;
+        let mut report = IncrementReport::default();
+        let result = match self.iterate(problem, linear, t, scales, &mut report) {
+            Ok(()) => Ok(report),
+            Err(IncrementFailure::Diverged { iterations, .. }) => {
+                // not a crawl, not a cut: the same increment by full Newton from the committed
+                // state, and full Newton for the rest of the run (the path has become hard);
+                // the report counts both attempts
+                self.newton_only = true;
+                problem.rollback();
+                super::newton::solve_increment(problem, linear, t, &self.settings, scales).map(|mut newton| {
+                    newton.iterations += iterations;
+                    newton.factorizations += report.factorizations;
+                    newton.assembly_seconds += report.assembly_seconds;
+                    newton.factorization_seconds += report.factorization_seconds;
+                    newton.solve_seconds += report.solve_seconds;
+                    newton
+                })
             }
-        }
+            Err(e) => Err(e),
+        };
         // a failed increment may have left a factor of a state far from the next attempt's
         self.factor_ready = result.is_ok();
         result

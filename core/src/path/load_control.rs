@@ -36,10 +36,6 @@ impl LoadControl {
         self.dt = incrementation.initial;
     }
 
-    pub fn incrementation(&self) -> &Incrementation {
-        &self.incrementation
-    }
-
     /// The pseudo-time the next attempt aims at.
     pub fn target(&self, window: &StepWindow<'_>) -> f64 {
         let t = window.t;
