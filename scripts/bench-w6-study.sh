@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --workspace --quiet
 start=$(date +%s.%N)
-./target/release/stiction run cases/ru-rough-sphere/rough-w6.toml --quiet --out out/bench-rough-w6 "$@"
+./target/release/stiction run cases/ru-rough-sphere/rough-w6.toml --quiet --overwrite --out out/bench-rough-w6 "$@"
 end=$(date +%s.%N)
 python3 - "$start" "$end" <<'PY'
 import json, sys, glob

@@ -1,5 +1,5 @@
 //! The error type of the `stiction` crate and program. Input errors exit with status 2,
-//! failed runs (no convergence after cutting) with status 1.
+//! failed runs (no convergence after cutting) with status 1, interrupted ones (Ctrl-C) with 130.
 
 use std::path::PathBuf;
 
@@ -17,6 +17,12 @@ pub enum StictionError {
     Core(#[from] stiction_core::CoreError),
     #[error("the run stopped at t = {time:.6}: {message} (every converged step so far is in '{out}')")]
     RunFailed { time: f64, message: String, out: PathBuf },
+    #[error("output folder '{path}' {message}")]
+    Output { path: PathBuf, message: String },
+    #[error(
+        "interrupted at t = {time:.6}; every converged step so far is in '{out}' (summary.json says \"interrupted\")"
+    )]
+    Interrupted { time: f64, out: PathBuf },
 }
 
 impl StictionError {
@@ -24,6 +30,7 @@ impl StictionError {
     pub fn exit_code(&self) -> i32 {
         match self {
             StictionError::RunFailed { .. } => 1,
+            StictionError::Interrupted { .. } => 130,
             StictionError::Core(stiction_core::CoreError::Write { .. }) => 1,
             _ => 2,
         }

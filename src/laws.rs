@@ -100,13 +100,30 @@ impl LawRegistry {
             return Ok(l.clone());
         }
         let mut problems = Vec::new();
-        for (_, r) in self.discover() {
+        let mut matches: Vec<(PathBuf, Arc<LawLibrary>)> = Vec::new();
+        for (path, r) in self.discover() {
+            // the first directory that holds the law wins; within it, the name must be unique
+            if matches.first().is_some_and(|(first, _)| first.parent() != path.parent()) {
+                break;
+            }
             match r {
-                Ok(l) if l.name == name_or_path => return Ok(l),
+                Ok(l) if l.name == name_or_path => matches.push((path, l)),
                 Ok(_) => {}
                 // a plugin of the wanted name may be the one with the wrong ABI: say so
                 Err(e) if e.contains("ABI version") || e.contains("bytes, expected") => problems.push(e),
                 Err(_) => {}
+            }
+        }
+        match matches.len() {
+            0 => {}
+            1 => return Ok(matches.remove(0).1),
+            _ => {
+                let paths: Vec<String> = matches.iter().map(|(p, _)| format!("'{}'", p.display())).collect();
+                return Err(format!(
+                    "{} libraries declare the law '{name_or_path}': {}; give the one you mean by its path (law = \"path/to/lib.so\")",
+                    matches.len(),
+                    paths.join(" and ")
+                ));
             }
         }
         let builtin: Vec<&str> = self.builtin.iter().map(|l| l.name.as_str()).collect();

@@ -11,6 +11,7 @@ pub mod build;
 pub mod case;
 pub mod error;
 pub mod laws;
+pub mod output_folder;
 pub mod plots;
 pub mod plugin_check;
 pub mod progress;

@@ -4,6 +4,8 @@ use clap::{Parser, Subcommand};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use stiction::case;
 use stiction::run::RunOptions;
 
@@ -31,6 +33,9 @@ enum Command {
         /// Never show progress, even on a terminal.
         #[arg(long)]
         quiet: bool,
+        /// Replace an earlier run in the output folder (a non-empty folder is refused otherwise).
+        #[arg(long)]
+        overwrite: bool,
     },
     /// Validate a case (schema, mesh, groups, materials, boundary conditions) without solving.
     Check {
@@ -262,11 +267,34 @@ fn calibrate(table: &std::path::Path, output: &std::path::Path, lo: usize, uo: u
     ExitCode::SUCCESS
 }
 
+/// A flag set by the first Ctrl-C (SIGINT): the run stops after the increment in progress and
+/// writes its summary. A second Ctrl-C ends the program at once (exit status 130); the files of
+/// every committed increment are complete either way, as each is written atomically.
+fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
+    let flag = Arc::new(AtomicBool::new(false));
+    let seen = flag.clone();
+    let installed = ctrlc::set_handler(move || {
+        if seen.swap(true, Ordering::SeqCst) {
+            std::process::exit(130);
+        }
+        eprintln!("\nstiction: interrupted; finishing the current increment (Ctrl-C again to stop at once)");
+    });
+    if let Err(e) = installed {
+        eprintln!("warning: Ctrl-C will end the run without a summary: {e}");
+    }
+    flag
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run { case, out, sets, quiet } => (|| {
-            let options = RunOptions { out, progress: !quiet && std::io::stderr().is_terminal() };
+        Command::Run { case, out, sets, quiet, overwrite } => (|| {
+            let options = RunOptions {
+                out,
+                progress: !quiet && std::io::stderr().is_terminal(),
+                overwrite,
+                interrupt: Some(interrupt_on_ctrl_c()),
+            };
             for summary in stiction::sweep::run_sweep(&case, &sets, &options)? {
                 // a closed stdout (e.g. `| head -1`) is not an error of the run
                 let mut out = std::io::stdout().lock();

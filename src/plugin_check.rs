@@ -171,9 +171,9 @@ fn check_extreme_gaps(law: &Arc<dyn InterfaceLaw>, scale: f64) -> CheckResult {
                 extreme_ok = false;
                 notes.push(format!("non-finite at {g:e}"));
             }
-            Err(e) if e.0.contains("panicked") || e.0.contains("non-finite") => {
+            Err(e) if e.0.starts_with("panic") || e.0.contains("non-finite") => {
                 extreme_ok = false;
-                notes.push(e.0);
+                notes.push(format!("at {g:e}: {}", e.0));
             }
             Err(e) => notes.push(format!("clean error at {g:e}: {}", e.0)),
         }

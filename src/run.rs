@@ -6,6 +6,8 @@ use crate::build::{BuiltModel, build};
 use crate::case::{ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec};
 use crate::error::{Result, StictionError};
 use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 use stiction_core::CoreError;
 use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
 use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
@@ -21,6 +23,10 @@ pub struct RunOptions {
     pub out: Option<PathBuf>,
     /// Show progress (normally: stderr is a terminal).
     pub progress: bool,
+    /// Replace an earlier run in the output folder (otherwise a non-empty folder is refused).
+    pub overwrite: bool,
+    /// Set to stop the run after the increment in progress (Ctrl-C).
+    pub interrupt: Option<Arc<AtomicBool>>,
 }
 
 /// Output directory of a case: `--out`, else `output.directory`, else `out/<name>`.
@@ -68,7 +74,7 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         let _ = rayon::ThreadPoolBuilder::new().num_threads(case.case.solver.threads).build_global();
     }
     let out = output_directory(case, options);
-    std::fs::create_dir_all(&out).map_err(|source| CoreError::Write { path: out.clone(), source })?;
+    crate::output_folder::prepare(&out, options.overwrite)?;
     for (name, points) in &built.layouts {
         let path = out.join(format!("{name}_points.csv"));
         crate::build::write_points_csv(&path, points).map_err(|source| CoreError::Write { path, source })?;
@@ -82,6 +88,7 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         arc_length_after_cuts: (case.case.solver.continuation == ContinuationSpec::ArcLength)
             .then_some(case.case.solver.arc_length_after_cuts),
         interfaces: built.interfaces.clone(),
+        interrupt: options.interrupt.clone(),
     };
     let ordering = match case.case.solver.ordering {
         OrderingSpec::NestedDissection => Ordering::NestedDissection,
@@ -99,6 +106,9 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
     let summary = run_steps(&mut built.model, &plan, &mut linear, nonlinear.as_mut(), &mut observers)?;
     for w in &summary.warnings {
         eprintln!("warning: {w}");
+    }
+    if summary.status == "interrupted" {
+        return Err(StictionError::Interrupted { time: summary.final_time, out });
     }
     if summary.status == "failed" {
         let message = summary.message.clone().unwrap_or_default();

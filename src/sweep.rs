@@ -17,6 +17,7 @@ pub fn run_sweep(path: &Path, sets: &[String], options: &RunOptions) -> Result<V
         return Err(base.error("sweep.values", "needs at least one value"));
     }
     let out = output_directory(&base, options);
+    crate::output_folder::prepare(&out, options.overwrite)?;
     let label = sweep.label.clone().unwrap_or_else(|| sweep.key.clone());
     let mut summaries = Vec::new();
     let mut curves = Vec::new();

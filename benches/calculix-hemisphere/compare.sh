@@ -27,7 +27,7 @@ cargo build --release --workspace >&2
 run_stiction() { # label, extra --set arguments
   local label=$1; shift
   /usr/bin/time -v -o "$out/$label.time" ./target/release/stiction run benches/calculix-hemisphere/case.toml \
-    --out "$out/$label" --quiet "$@" > "$out/$label.log" 2>&1 || { cat "$out/$label.log" >&2; exit 1; }
+    --out "$out/$label" --quiet --overwrite "$@" > "$out/$label.log" 2>&1 || { cat "$out/$label.log" >&2; exit 1; }
 }
 run_stiction stiction
 if [ "$baseline" = 1 ]; then

@@ -25,7 +25,7 @@ Coherence;
 // {depth below the sphere surface = 0, rho <= RHO0}, approximated by
 // sqrt(depth^2 + max(0, rho - RHO0)^2), depth = R - |x - centre|.
 // (parameters: `--set mesh.parameters.H0=...` scales the mesh for the scaling study)
-DefineConstant[ H0 = 3.5, G = 0.4, RHO0 = 75, HMAX = 150 ];
+DefineConstant[ H0 = {3.5, Min 0.5, Name "H0"}, G = {0.4, Min 0, Name "G"}, RHO0 = {75, Min 0, Name "RHO0"}, HMAX = {150, Min 1, Name "HMAX"} ];
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeFromPoints = 0;
 Mesh.MeshSizeFromCurvature = 0;

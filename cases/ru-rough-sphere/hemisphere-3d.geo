@@ -2,7 +2,7 @@
 // Size h_contact within r_fine of the pole, growing by `growth` per unit distance beyond, up to
 // h_far. Physical groups: body (volume), surface (the spherical surface), base (z = R).
 SetFactory("OpenCASCADE");
-DefineConstant[ R = 1000.0, h_contact = 12.0, r_fine = 60.0, growth = 0.3, h_far = 150.0 ];
+DefineConstant[ R = {1000.0, Min 10, Name "R"}, h_contact = {12.0, Min 0.5, Name "h_contact"}, r_fine = {60.0, Min 0, Name "r_fine"}, growth = {0.3, Min 0, Name "growth"}, h_far = {150.0, Min 1, Name "h_far"} ];
 Sphere(1) = {0, 0, R, R, -Pi/2, 0, 2*Pi};
 e = 1e-6 * R;
 Physical Volume("body") = {1};

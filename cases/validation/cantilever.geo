@@ -1,6 +1,6 @@
 // Prismatic cantilever L x B x H along x. Groups: body, clamp (x = 0), tip (x = L).
 SetFactory("OpenCASCADE");
-DefineConstant[ L = 10.0, B = 1.0, H = 1.0, h = 0.5 ];
+DefineConstant[ L = {10.0, Min 1e-6, Name "L"}, B = {1.0, Min 1e-6, Name "B"}, H = {1.0, Min 1e-6, Name "H"}, h = {0.5, Min 0.01, Name "h"} ];
 Box(1) = {0, 0, 0, L, B, H};
 e = 1e-6 * L;
 Physical Volume("body") = {1};

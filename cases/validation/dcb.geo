@@ -3,7 +3,7 @@
 // bonded to the symmetry plane. Fine mesh h_fine in the band a0 - 5 < x < x_fine, z < 2 H / 5.
 // Groups: body, ligament, far_end (x = L), load_line (x = 0, z = 0).
 SetFactory("OpenCASCADE");
-DefineConstant[ L = 100.0, B = 2.0, H = 5.0, a0 = 30.0, h_fine = 1.0, h_coarse = 2.5, x_fine = 70.0 ];
+DefineConstant[ L = {100.0, Min 1, Name "L"}, B = {2.0, Min 0.01, Name "B"}, H = {5.0, Min 0.01, Name "H"}, a0 = {30.0, Min 0, Name "a0"}, h_fine = {1.0, Min 0.05, Name "h_fine"}, h_coarse = {2.5, Min 0.05, Name "h_coarse"}, x_fine = {70.0, Min 0, Name "x_fine"} ];
 Box(1) = {0, 0, 0, a0, B, H};
 Box(2) = {a0, 0, 0, L - a0, B, H};
 BooleanFragments{ Volume{1}; Delete; }{ Volume{2}; Delete; }

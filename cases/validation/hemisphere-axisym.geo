@@ -1,7 +1,7 @@
 // Hemisphere of radius R in the r-z half plane (x = r, y = z), pole at the origin touching
 // the flat z = 0, base at z = R. Graded: size h_contact within r_fine of the pole, growing to
 // h_far. Physical groups: body, surface (the spherical boundary), base (z = R), axis (r = 0).
-DefineConstant[ R = 1000.0, h_contact = 4.0, r_fine = 80.0, h_far = 100.0 ];
+DefineConstant[ R = {1000.0, Min 10, Name "R"}, h_contact = {4.0, Min 0.05, Name "h_contact"}, r_fine = {80.0, Min 0, Name "r_fine"}, h_far = {100.0, Min 1, Name "h_far"} ];
 Point(1) = {0, 0, 0, h_contact};
 Point(2) = {0, R, 0, h_far};
 Point(3) = {R, R, 0, h_far};

@@ -3,7 +3,7 @@
 // distance, up to h_far. Groups: body, surface (spherical), base (z = R), sym_x (x = 0),
 // sym_y (y = 0).
 SetFactory("OpenCASCADE");
-DefineConstant[ R = 1000.0, h_contact = 8.0, r_fine = 40.0, growth = 0.4, h_far = 150.0 ];
+DefineConstant[ R = {1000.0, Min 10, Name "R"}, h_contact = {8.0, Min 0.5, Name "h_contact"}, r_fine = {40.0, Min 0, Name "r_fine"}, growth = {0.4, Min 0, Name "growth"}, h_far = {150.0, Min 1, Name "h_far"} ];
 Sphere(1) = {0, 0, R, R, -Pi/2, 0, Pi/2};
 e = 1e-6 * R;
 Physical Volume("body") = {1};

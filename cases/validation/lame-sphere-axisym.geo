@@ -1,6 +1,6 @@
 // Thick hollow sphere in the r-z half plane (x = r, y = z), quarter annulus a <= rho <= b.
 // Physical groups: body, inner, outer, sym_z (z = 0 plane), axis (r = 0).
-DefineConstant[ a = 1.0, b = 2.0, h = 0.1 ];
+DefineConstant[ a = {1.0, Min 1e-6, Name "a"}, b = {2.0, Min 1e-6, Name "b"}, h = {0.1, Min 0.002, Name "h"} ];
 Point(1) = {0, 0, 0, h};
 Point(2) = {a, 0, 0, h};
 Point(3) = {b, 0, 0, h};

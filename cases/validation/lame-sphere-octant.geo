@@ -1,7 +1,7 @@
 // Octant of a thick hollow sphere, inner radius a, outer radius b (Lame problem).
 // Physical groups: body, inner, outer, sym_x, sym_y, sym_z.
 SetFactory("OpenCASCADE");
-DefineConstant[ a = 1.0, b = 2.0, h = 0.25 ];
+DefineConstant[ a = {1.0, Min 1e-6, Name "a"}, b = {2.0, Min 1e-6, Name "b"}, h = {0.25, Min 0.01, Name "h"} ];
 Sphere(1) = {0, 0, 0, b, 0, Pi/2, Pi/2};
 Sphere(2) = {0, 0, 0, a, 0, Pi/2, Pi/2};
 BooleanDifference(3) = { Volume{1}; Delete; }{ Volume{2}; Delete; };

@@ -1,7 +1,7 @@
 // A block 1 x 1 x L (L along z) whose bottom face meets a rigid flat. Groups: body, bottom
 // (z = 0), top (z = L), x0, x1, y0, y1 (lateral faces).
 SetFactory("OpenCASCADE");
-DefineConstant[ L = 1.0, h = 0.5 ];
+DefineConstant[ L = {1.0, Min 1e-3, Name "L"}, h = {0.5, Min 0.01, Name "h"} ];
 Box(1) = {0, 0, 0, 1, 1, L};
 e = 1e-6;
 Physical Volume("body") = {1};

@@ -1,7 +1,7 @@
 // Two unit cubes stacked along z, joined at the interior face z = 1 ("interface").
 // Groups: lower, upper, interface, bottom (z = 0), top (z = 2), x0 (x = 0), y0 (y = 0).
 SetFactory("OpenCASCADE");
-DefineConstant[ h = 0.5 ];
+DefineConstant[ h = {0.5, Min 0.01, Name "h"} ];
 Box(1) = {0, 0, 0, 1, 1, 1};
 Box(2) = {0, 0, 1, 1, 1, 1};
 BooleanFragments{ Volume{1, 2}; Delete; }{}

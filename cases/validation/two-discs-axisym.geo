@@ -1,7 +1,7 @@
 // Two solid cylinders of radius 1 and length 1 stacked along the axis, in the r-z half plane
 // (x = r, y = z), joined at z = 1 ("interface"). Groups: lower, upper, interface, bottom
 // (z = 0), top (z = 2).
-DefineConstant[ h = 0.5 ];
+DefineConstant[ h = {0.5, Min 0.005, Name "h"} ];
 Point(1) = {0, 0, 0, h};
 Point(2) = {1, 0, 0, h};
 Point(3) = {1, 1, 0, h};

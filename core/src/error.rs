@@ -13,6 +13,8 @@ pub enum CoreError {
     Invalid(String),
     #[error("material '{material}' failed at element {element}, integration point {point}: {message}")]
     MaterialFailure { material: String, element: usize, point: usize, message: String },
+    #[error("law '{law}' failed at point {point} of interface '{interface}' ({at}): {message}")]
+    LawFailure { law: String, interface: String, point: usize, at: String, message: String },
     #[error("the tangent matrix could not be factorized ({0})")]
     Factorization(String),
     #[error("non-finite value in the {0}")]

@@ -34,18 +34,31 @@ pub struct PlacedAsperity {
     pub height: f64,
 }
 
+/// The largest layout the generator makes (a guard against a mistyped density).
+pub const MAX_POINTS: usize = 1_000_000;
+
 /// Generates the layout; errors name the parameter that makes it impossible.
 pub fn generate(spec: &LayoutSpec) -> Result<Vec<PlacedAsperity>, String> {
-    if !(spec.density > 0.0) {
-        return Err(format!("density must be positive, got {}", spec.density));
+    let checks = [
+        ("density", spec.density, spec.density > 0.0, "> 0"),
+        ("region_radius", spec.region_radius, spec.region_radius > 0.0, "> 0"),
+        ("min_spacing", spec.min_spacing, spec.min_spacing >= 0.0, ">= 0"),
+        ("height", spec.height, spec.height > 0.0, "> 0"),
+        ("height_std", spec.height_std, spec.height_std >= 0.0, ">= 0"),
+    ];
+    for (key, value, in_range, range) in checks {
+        if !(value.is_finite() && in_range) {
+            return Err(format!("{key} must be a finite number {range}, got {value}"));
+        }
     }
-    if !(spec.region_radius > 0.0) {
-        return Err(format!("region_radius must be positive, got {}", spec.region_radius));
+    let expected = spec.density * std::f64::consts::PI * spec.region_radius.powi(2);
+    if expected > MAX_POINTS as f64 {
+        return Err(format!(
+            "density {} over a region of radius {} asks for {expected:.3e} asperities; at most {MAX_POINTS} are generated",
+            spec.density, spec.region_radius
+        ));
     }
-    if !(spec.min_spacing >= 0.0) || !(spec.height > 0.0) || !(spec.height_std >= 0.0) {
-        return Err("min_spacing and height_std must be >= 0 and height > 0".into());
-    }
-    let target = (spec.density * std::f64::consts::PI * spec.region_radius.powi(2)).round() as usize;
+    let target = expected.round() as usize;
     if target == 0 {
         return Err(format!(
             "a region of radius {} at density {} holds no asperity (need density x pi r^2 >= 0.5)",

@@ -16,6 +16,13 @@ pub fn initial_states(law: &dyn InterfaceLaw, n_points: usize) -> Vec<f64> {
     state
 }
 
+/// The law's own error (or caught panic) at point `index` (0-based) of `interface`.
+/// `at` says where: the gap or the opening.
+fn law_failure(law: &dyn InterfaceLaw, interface: &str, index: usize, at: String, message: String) -> CoreError {
+    let (law, interface) = (law.name().to_string(), interface.to_string());
+    CoreError::LawFailure { law, interface, point: index + 1, at, message }
+}
+
 /// The law at gap `g` for point `index` (0-based) of `interface`, from its committed state
 /// (`ns` numbers per point) into the trial state.
 pub fn evaluate_point(
@@ -29,7 +36,7 @@ pub fn evaluate_point(
     let ns = law.n_state();
     let r = law
         .evaluate(g, &committed[index * ns..(index + 1) * ns], &mut trial[index * ns..(index + 1) * ns])
-        .map_err(|e| CoreError::Invalid(format!("interface '{interface}', point {}: {}", index + 1, e.0)))?;
+        .map_err(|e| law_failure(law, interface, index, format!("gap {g:e}"), e.0))?;
     if !r.value.is_finite() || !r.tangent.is_finite() {
         return Err(CoreError::NonFinite(format!(
             "value of law '{}' at point {} of interface '{interface}' (gap {g:e})",
@@ -53,7 +60,7 @@ pub fn evaluate_point_mixed(
     let ns = law.n_state();
     let r = law
         .evaluate_mixed(gap, &committed[index * ns..(index + 1) * ns], &mut trial[index * ns..(index + 1) * ns])
-        .map_err(|e| CoreError::Invalid(format!("interface '{interface}', point {}: {}", index + 1, e.0)))?;
+        .map_err(|e| law_failure(law, interface, index, format!("opening {gap:?}"), e.0))?;
     if r.value.iter().chain(r.tangent.iter().flatten()).any(|v| !v.is_finite()) {
         return Err(CoreError::NonFinite(format!(
             "value of law '{}' at point {} of interface '{interface}' (opening {gap:?})",

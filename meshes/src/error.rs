@@ -22,6 +22,10 @@ pub enum MeshError {
         "the 'gmsh' program is needed to mesh '{path}' but was not found on PATH; install it with 'apt-get install gmsh' (Debian/Ubuntu) or give a .msh file instead"
     )]
     GmshMissing { path: PathBuf },
-    #[error("gmsh failed to mesh '{path}' (exit status {status}):\n{output}")]
+    #[error("gmsh failed to mesh '{path}' ({status}):\n{output}")]
     GmshFailed { path: PathBuf, status: String, output: String },
+    #[error(
+        "gmsh did not finish meshing '{path}' within {seconds} s ({settings}); a mesh size far too small for the geometry is the usual cause. Raise the limit with mesh.time_limit if the mesh is meant to be this fine"
+    )]
+    GmshTimeLimit { path: PathBuf, seconds: f64, settings: String },
 }

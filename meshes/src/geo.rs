@@ -2,9 +2,12 @@
 //! text, the options and the gmsh version, so an unchanged input is never meshed twice.
 
 use crate::error::MeshError;
+use crate::msh::read_msh;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+use stiction_core::mesh::Mesh;
 
 /// How to mesh a `.geo` file.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,18 +28,64 @@ fn gmsh_version() -> Option<String> {
     Some(text.trim().to_string())
 }
 
-/// Meshes `geo` into `cache_dir` (created if needed) and returns the `.msh` path.
-pub fn mesh_geo(geo: &Path, options: &GeoOptions, cache_dir: &Path) -> Result<PathBuf, MeshError> {
-    let text = std::fs::read(geo).map_err(|source| MeshError::Io { path: geo.to_path_buf(), source })?;
-    let version = gmsh_version().ok_or_else(|| MeshError::GmshMissing { path: geo.to_path_buf() })?;
+/// The most a gmsh run may take unless the caller says otherwise.
+pub const DEFAULT_TIME_LIMIT_SECONDS: f64 = 600.0;
+
+/// The cache file for `geo` meshed with `options` by gmsh `version`: a hash of the `.geo` text,
+/// the options that shape the mesh and the gmsh version.
+fn cache_path(geo: &Path, text: &[u8], options: &GeoOptions, version: &str, cache_dir: &Path) -> PathBuf {
     let mut hasher = Sha256::new();
-    hasher.update(&text);
-    hasher.update(format!("{options:?}|{version}").as_bytes());
+    hasher.update(text);
+    let shape = (options.dimension, options.order, options.size_factor, &options.parameters);
+    hasher.update(format!("{shape:?}|{version}").as_bytes());
     let hash: String = hasher.finalize().iter().take(8).map(|b| format!("{b:02x}")).collect();
     let stem = geo.file_stem().and_then(|s| s.to_str()).unwrap_or("mesh");
-    let out = cache_dir.join(format!("{stem}-{hash}.msh"));
+    cache_dir.join(format!("{stem}-{hash}.msh"))
+}
+
+/// Reads a mesh gmsh made from `geo` and checks it has cells of the model's dimension (an
+/// empty or truncated `.geo` gives gmsh nothing to mesh, and gmsh still exits 0).
+fn read_meshed(msh: &Path, geo: &Path, options: &GeoOptions, gmsh_output: &str) -> Result<Mesh, MeshError> {
+    let gmsh_said = gmsh_flagged(gmsh_output);
+    let mut mesh = read_msh(msh).map_err(|e| MeshError::GmshFailed {
+        path: geo.to_path_buf(),
+        status: "exit status: 0, but its mesh does not load: is the .geo empty or truncated?".into(),
+        output: gmsh_said.clone().unwrap_or_else(|| e.to_string()),
+    })?;
+    if !mesh.blocks.iter().any(|b| b.cell_type.dim() == options.dimension) {
+        return Err(MeshError::GmshFailed {
+            path: geo.to_path_buf(),
+            status: format!(
+                "exit status: 0, but it made no {}D cells: is the .geo empty or truncated?",
+                options.dimension
+            ),
+            output: gmsh_said.unwrap_or_default(),
+        });
+    }
+    mesh.source = format!("{} (meshed by gmsh as {})", geo.display(), msh.display());
+    Ok(mesh)
+}
+
+/// Meshes `geo` with gmsh, or takes the mesh from `cache_dir` (created if needed) when the same
+/// inputs were meshed before, and reads it. A mesh enters the cache only once it has loaded.
+/// gmsh runs at most `time_limit_seconds`.
+pub fn mesh_geo(
+    geo: &Path,
+    options: &GeoOptions,
+    cache_dir: &Path,
+    time_limit_seconds: f64,
+) -> Result<(Mesh, PathBuf), MeshError> {
+    let text = std::fs::read(geo).map_err(|source| MeshError::Io { path: geo.to_path_buf(), source })?;
+    let version = gmsh_version().ok_or_else(|| MeshError::GmshMissing { path: geo.to_path_buf() })?;
+    let out = cache_path(geo, &text, options, &version, cache_dir);
     if out.exists() {
-        return Ok(out);
+        match read_meshed(&out, geo, options, "") {
+            Ok(mesh) => return Ok((mesh, out)),
+            // a cache entry that does not load (written by an older version) is meshed again
+            Err(_) => {
+                let _ = std::fs::remove_file(&out);
+            }
+        }
     }
     std::fs::create_dir_all(cache_dir).map_err(|source| MeshError::Io { path: cache_dir.to_path_buf(), source })?;
     // A temporary name unique to this process and call, so concurrent runs never share it;
@@ -44,6 +93,64 @@ pub fn mesh_geo(geo: &Path, options: &GeoOptions, cache_dir: &Path) -> Result<Pa
     static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let tmp = out.with_extension(format!("partial-{}-{call}.msh", std::process::id()));
+    let log = tmp.with_extension("log");
+    let result = run_gmsh(geo, options, &tmp, &log, time_limit_seconds);
+    let output = std::fs::read_to_string(&log).unwrap_or_default();
+    let _ = std::fs::remove_file(&log);
+    let loaded = match result {
+        Err(MeshError::GmshFailed { path, status, .. }) => {
+            Err(MeshError::GmshFailed { path, status, output: gmsh_messages(&output) })
+        }
+        Err(e) => Err(e),
+        Ok(()) => {
+            let errors: Vec<&str> = output.lines().filter(|l| l.starts_with("Error")).collect();
+            if errors.is_empty() {
+                read_meshed(&tmp, geo, options, &output)
+            } else {
+                Err(MeshError::GmshFailed {
+                    path: geo.to_path_buf(),
+                    status: "exit status: 0, but it reported errors".into(),
+                    output: errors.join("\n"),
+                })
+            }
+        }
+    };
+    let mut mesh = match loaded {
+        Ok(mesh) => mesh,
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            return Err(e);
+        }
+    };
+    std::fs::rename(&tmp, &out).map_err(|source| MeshError::Io { path: out.clone(), source })?;
+    mesh.source = format!("{} (meshed by gmsh as {})", geo.display(), out.display());
+    Ok((mesh, out))
+}
+
+/// gmsh's errors and warnings in its output, if it gave any.
+fn gmsh_flagged(output: &str) -> Option<String> {
+    let flagged: Vec<&str> = output.lines().filter(|l| l.starts_with("Error") || l.starts_with("Warning")).collect();
+    (!flagged.is_empty()).then(|| flagged.join("\n"))
+}
+
+/// gmsh's errors and warnings in its output, or its last 15 lines if it gave none.
+fn gmsh_messages(output: &str) -> String {
+    gmsh_flagged(output).unwrap_or_else(|| {
+        let lines: Vec<&str> = output.lines().collect();
+        lines[lines.len().saturating_sub(15)..].join("\n")
+    })
+}
+
+/// Runs gmsh on `geo` into `msh`, its output into `log`, killing it after `time_limit_seconds`.
+fn run_gmsh(
+    geo: &Path,
+    options: &GeoOptions,
+    msh: &Path,
+    log: &Path,
+    time_limit_seconds: f64,
+) -> Result<(), MeshError> {
+    let io = |source| MeshError::Io { path: log.to_path_buf(), source };
+    let log_file = std::fs::File::create(log).map_err(io)?;
     let mut cmd = Command::new("gmsh");
     cmd.arg(geo)
         .arg(format!("-{}", options.dimension))
@@ -58,17 +165,33 @@ pub fn mesh_geo(geo: &Path, options: &GeoOptions, cache_dir: &Path) -> Result<Pa
     for (name, value) in &options.parameters {
         cmd.arg("-setnumber").arg(name).arg(value.to_string());
     }
-    cmd.arg("-o").arg(&tmp);
-    let result = cmd.output().map_err(|_| MeshError::GmshMissing { path: geo.to_path_buf() })?;
-    if !result.status.success() || !tmp.exists() {
-        let output = String::from_utf8_lossy(&result.stdout).to_string() + &String::from_utf8_lossy(&result.stderr);
-        let tail: Vec<&str> = output.lines().rev().take(15).collect();
+    cmd.arg("-o").arg(msh).stdin(Stdio::null()).stdout(log_file.try_clone().map_err(io)?).stderr(log_file);
+    let mut child = cmd.spawn().map_err(|_| MeshError::GmshMissing { path: geo.to_path_buf() })?;
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().map_err(io)? {
+            break status;
+        }
+        if start.elapsed().as_secs_f64() > time_limit_seconds {
+            let _ = child.kill();
+            let _ = child.wait();
+            let _ = std::fs::remove_file(msh);
+            let parameters: Vec<String> = options.parameters.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+            return Err(MeshError::GmshTimeLimit {
+                path: geo.to_path_buf(),
+                seconds: time_limit_seconds,
+                settings: format!("size_factor = {}, {}", options.size_factor, parameters.join(", ")),
+            });
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    if !status.success() || !msh.exists() {
+        let _ = std::fs::remove_file(msh);
         return Err(MeshError::GmshFailed {
             path: geo.to_path_buf(),
-            status: result.status.to_string(),
-            output: tail.into_iter().rev().collect::<Vec<_>>().join("\n"),
+            status: status.to_string(),
+            output: String::new(),
         });
     }
-    std::fs::rename(&tmp, &out).map_err(|source| MeshError::Io { path: out.clone(), source })?;
-    Ok(out)
+    Ok(())
 }

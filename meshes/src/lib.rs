@@ -5,9 +5,11 @@
 pub mod error;
 pub mod generate;
 pub mod geo;
+pub mod geo_parameters;
 pub mod msh;
 pub mod physical_names;
 
 pub use error::MeshError;
-pub use geo::{GeoOptions, mesh_geo};
+pub use geo::{DEFAULT_TIME_LIMIT_SECONDS, GeoOptions, mesh_geo};
+pub use geo_parameters::{GeoParameter, declared_parameters};
 pub use msh::read_msh;

@@ -3,9 +3,9 @@
 
 use crate::case::{Analysis, LoadedCase};
 use crate::error::Result;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use stiction_core::mesh::Mesh;
-use stiction_meshes::{GeoOptions, mesh_geo, read_msh};
+use stiction_meshes::{GeoOptions, declared_parameters, mesh_geo, read_msh};
 
 /// Reads (or meshes) the case's mesh.
 pub fn load_mesh(case: &LoadedCase) -> Result<(Mesh, PathBuf)> {
@@ -15,6 +15,7 @@ pub fn load_mesh(case: &LoadedCase) -> Result<(Mesh, PathBuf)> {
         (Some(file), None) => base.join(file),
         (None, Some(geo)) => {
             let geo = base.join(geo);
+            check_geo_parameters(case, &geo)?;
             let options = GeoOptions {
                 dimension: if case.case.analysis == Analysis::Axisymmetric { 2 } else { 3 },
                 order: spec.order,
@@ -22,13 +23,51 @@ pub fn load_mesh(case: &LoadedCase) -> Result<(Mesh, PathBuf)> {
                 parameters: spec.parameters.iter().map(|(k, v)| (k.clone(), *v)).collect(),
             };
             let cache = geo.parent().unwrap_or(base).join(".stiction-cache");
-            mesh_geo(&geo, &options, &cache)?
+            return Ok(mesh_geo(&geo, &options, &cache, spec.time_limit)?);
         }
         _ => {
             return Err(case.error("mesh", "give exactly one of 'file' (a .msh) or 'geo' (a .geo meshed by gmsh)"));
         }
     };
     Ok((read_msh(&path)?, path))
+}
+
+/// Each of the case's mesh parameters is one the `.geo` declares (gmsh would ignore any other
+/// and mesh with the `.geo`'s own value) and lies within the declared `Min`/`Max`.
+fn check_geo_parameters(case: &LoadedCase, geo: &Path) -> Result<()> {
+    let given = &case.case.mesh.parameters;
+    if given.is_empty() {
+        return Ok(());
+    }
+    let text = std::fs::read_to_string(geo)
+        .map_err(|e| case.error("mesh.geo", format!("cannot read '{}': {e}", geo.display())))?;
+    let declared = declared_parameters(&text);
+    for (name, &value) in given {
+        let key = format!("mesh.parameters.{name}");
+        let Some(parameter) = declared.iter().find(|p| &p.name == name) else {
+            let names: Vec<&str> = declared.iter().map(|p| p.name.as_str()).collect();
+            let known = if names.is_empty() { "none".to_string() } else { names.join(", ") };
+            return Err(case.error(
+                key,
+                format!(
+                    "'{}' declares no parameter '{name}' in a DefineConstant (it declares: {known})",
+                    geo.display()
+                ),
+            ));
+        };
+        if !parameter.admits(value) {
+            return Err(case.error(
+                key,
+                format!(
+                    "{value} is outside the range {} that '{}' line {} declares for '{name}'",
+                    parameter.range_text(),
+                    geo.display(),
+                    parameter.line
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// An axisymmetric model needs a planar mesh (z = 0) in x = r >= 0.

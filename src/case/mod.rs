@@ -92,9 +92,17 @@ pub struct MeshSpec {
     /// gmsh `-clscale` factor for `.geo` meshing (default 1).
     #[serde(default = "one")]
     pub size_factor: f64,
-    /// Numbers passed to the `.geo` with `-setnumber`.
+    /// Numbers passed to the `.geo` with `-setnumber`; each must be declared by the `.geo`'s
+    /// `DefineConstant` and lie within its `Min`/`Max`.
     #[serde(default)]
     pub parameters: BTreeMap<String, f64>,
+    /// Longest gmsh may take to mesh the `.geo`, in seconds (default 600).
+    #[serde(default = "default_mesh_time_limit")]
+    pub time_limit: f64,
+}
+
+fn default_mesh_time_limit() -> f64 {
+    stiction_meshes::DEFAULT_TIME_LIMIT_SECONDS
 }
 
 fn default_order() -> usize {
@@ -425,7 +433,7 @@ fn default_growth() -> f64 {
 pub fn defaults_help() -> String {
     let n = NewtonSettings::default();
     format!(
-        "Defaults (case file keys): analysis = \"3d\"; mesh.order = 2; mesh.size_factor = 1; \
+        "Defaults (case file keys): analysis = \"3d\"; mesh.order = 2; mesh.size_factor = 1; mesh.time_limit = 600 s; \
          sections[].quadrature = \"standard\" (tet10: 4 points); boundary amplitude = \"ramp\" \
          (0 -> 1 over t in [0, 1]); steps[].initial_increment = step/10, min_increment = 1e-6 step, \
          max_increment = step, output_every = 1; solver.max_iterations = {}, tol_residual = {:e}, \

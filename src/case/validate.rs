@@ -23,7 +23,45 @@ pub fn validate(case: &LoadedCase) -> Result<()> {
     solver(case)?;
     steps(case)?;
     mesh(case)?;
+    loads_and_boundaries(case)?;
     interfaces(case)
+}
+
+/// Every number of the loads, the boundary conditions, the amplitudes and a sweep is finite.
+fn loads_and_boundaries(case: &LoadedCase) -> Result<()> {
+    let c = &case.case;
+    for (i, l) in c.loads.iter().enumerate() {
+        if let Some(v) = l.value {
+            finite(case, &format!("loads[{i}].value"), v)?;
+        }
+        for (k, v) in l.vector.iter().flatten().enumerate() {
+            finite(case, &format!("loads[{i}].vector[{k}]"), *v)?;
+        }
+    }
+    for (i, b) in c.boundary.iter().enumerate() {
+        if let Some(v) = b.value {
+            finite(case, &format!("boundary[{i}].value"), v)?;
+        }
+    }
+    for (name, a) in &c.amplitudes {
+        for (k, v) in a.time.iter().enumerate() {
+            finite(case, &format!("amplitudes.{name}.time[{k}]"), *v)?;
+        }
+        for (k, v) in a.value.iter().enumerate() {
+            finite(case, &format!("amplitudes.{name}.value[{k}]"), *v)?;
+        }
+    }
+    for (i, f) in c.interfaces.iter().enumerate() {
+        for (k, v) in f.normal.iter().flatten().enumerate() {
+            finite(case, &format!("interfaces[{i}].normal[{k}]"), *v)?;
+        }
+    }
+    if let Some(sweep) = &c.sweep {
+        for (k, v) in sweep.values.iter().enumerate() {
+            finite(case, &format!("sweep.values[{k}]"), *v)?;
+        }
+    }
+    Ok(())
 }
 
 fn solver(case: &LoadedCase) -> Result<()> {
@@ -91,6 +129,7 @@ fn steps(case: &LoadedCase) -> Result<()> {
 fn mesh(case: &LoadedCase) -> Result<()> {
     let m = &case.case.mesh;
     positive(case, "mesh.size_factor", m.size_factor)?;
+    positive(case, "mesh.time_limit", m.time_limit)?;
     if m.geo.is_some() && !(m.order == 1 || m.order == 2) {
         return Err(case.error("mesh.order", format!("must be 1 or 2, got {}", m.order)));
     }
@@ -113,6 +152,24 @@ fn interfaces(case: &LoadedCase) -> Result<()> {
         }
         for (k, v) in &f.parameters {
             finite(case, &format!("interfaces[{i}].parameters.{k}"), *v)?;
+        }
+        if let Some(p) = &f.points {
+            points(case, &key("points"), p)?;
+        }
+    }
+    Ok(())
+}
+
+/// The numbers of a generated layout of discrete points.
+fn points(case: &LoadedCase, key: &str, p: &super::PointsSpec) -> Result<()> {
+    for (k, v) in [("density", p.density), ("region_radius", p.region_radius), ("height", p.height)] {
+        if let Some(v) = v {
+            positive(case, &format!("{key}.{k}"), v)?;
+        }
+    }
+    for (k, v) in [("min_spacing", p.min_spacing), ("height_std", p.height_std)] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(case.error(format!("{key}.{k}"), format!("must be a finite number >= 0, got {v}")));
         }
     }
     Ok(())

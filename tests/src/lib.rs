@@ -36,7 +36,7 @@ pub fn build_case(relative: &str, sets: &[&str]) -> (case::LoadedCase, BuiltMode
 pub fn run_case(relative: &str, sets: &[&str], label: &str) -> (BuiltModel, RunSummary) {
     let (loaded, mut built) = build_case(relative, sets);
     let out = workspace_root().join("target").join("test-out").join(label);
-    let options = RunOptions { out: Some(out), progress: false };
+    let options = RunOptions { out: Some(out), overwrite: true, ..Default::default() };
     let summary = run_model(&loaded, &mut built, &options).unwrap_or_else(|e| panic!("{e}"));
     (built, summary)
 }

@@ -2,7 +2,7 @@
 //! output (an interrupted run keeps every converged increment).
 
 use std::process::Command;
-use stiction_meshes::{GeoOptions, mesh_geo, read_msh};
+use stiction_meshes::{DEFAULT_TIME_LIMIT_SECONDS, GeoOptions, mesh_geo, read_msh};
 use stiction_tests::workspace_root;
 
 fn scratch(name: &str) -> std::path::PathBuf {
@@ -17,9 +17,13 @@ fn ascii_and_binary_msh41_give_the_same_mesh_and_geo_meshing_is_cached() {
     let dir = scratch("msh-formats");
     let geo = workspace_root().join("cases/validation/cantilever.geo");
     let opts = GeoOptions { dimension: 3, order: 2, size_factor: 2.0, parameters: vec![] };
-    let cached = mesh_geo(&geo, &opts, &dir).unwrap();
+    let (_, cached) = mesh_geo(&geo, &opts, &dir, DEFAULT_TIME_LIMIT_SECONDS).unwrap();
     let stamp = std::fs::metadata(&cached).unwrap().modified().unwrap();
-    assert_eq!(mesh_geo(&geo, &opts, &dir).unwrap(), cached, "same inputs, same cache file");
+    assert_eq!(
+        mesh_geo(&geo, &opts, &dir, DEFAULT_TIME_LIMIT_SECONDS).unwrap().1,
+        cached,
+        "same inputs, same cache file"
+    );
     assert_eq!(std::fs::metadata(&cached).unwrap().modified().unwrap(), stamp, "cache hit must not re-mesh");
     let binary = dir.join("binary.msh");
     let status = Command::new("gmsh")
@@ -64,7 +68,7 @@ fn a_failed_run_keeps_its_converged_increments() {
     .map(|s| s.to_string())
     .collect();
     let loaded = stiction::case::load(&case, &sets).unwrap();
-    let options = stiction::run::RunOptions { out: Some(out.clone()), progress: false };
+    let options = stiction::run::RunOptions { out: Some(out.clone()), overwrite: true, ..Default::default() };
     let err = stiction::run::run(&loaded, &options).unwrap_err();
     assert_eq!(err.exit_code(), 1, "{err}");
     let text = std::fs::read_to_string(out.join("history.csv")).unwrap();
@@ -95,7 +99,7 @@ fn a_sweep_runs_each_value_in_its_own_folder_with_combined_plots() {
     .iter()
     .map(|s| s.to_string())
     .collect();
-    let options = stiction::run::RunOptions { out: Some(out.clone()), progress: false };
+    let options = stiction::run::RunOptions { out: Some(out.clone()), overwrite: true, ..Default::default() };
     let summaries = stiction::sweep::run_sweep(&case, &sets, &options).unwrap();
     assert_eq!(summaries.len(), 2);
     // the second run presses twice as far: Hertz F ~ d^1.5 -> ratio 2^1.5 = 2.83 (within 5%)

@@ -11,7 +11,7 @@ use super::arc_length_control::ArcLengthControl;
 use super::load_control::LoadControl;
 use super::step::StepPlan;
 use super::{Attempt, PathControl, Solvers, StepWindow};
-use crate::error::Result;
+use crate::error::{CoreError, Result};
 use crate::linear_solver::LinearSolver;
 use crate::model::Model;
 use crate::nonlinear::arc_length::PreviousIncrement;
@@ -20,7 +20,10 @@ use crate::problem::NonlinearProblem;
 use crate::record::interface_tracker::{CommitContext, InterfaceInfo};
 use crate::record::{CommittedIncrement, InterfaceTracker, Observer, RunSummary};
 use crate::vector::norm;
+use std::collections::BTreeMap;
 use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// A load-controlled increment whose displacement increment exceeds this multiple of the one
@@ -39,6 +42,15 @@ pub struct RunPlan {
     pub arc_length_after_cuts: Option<usize>,
     /// Per contribution of the model: kind and viscous-share limit.
     pub interfaces: Vec<InterfaceInfo>,
+    /// Set (e.g. by a Ctrl-C handler) to stop the run after the increment in progress: the run
+    /// ends with status "interrupted".
+    pub interrupt: Option<Arc<AtomicBool>>,
+}
+
+/// Why a run ended before its last step did.
+enum Ending {
+    Failed(String),
+    Interrupted,
 }
 
 /// Runs every step of `plan` on `model` from its initial state. A run that cannot go on is not
@@ -63,6 +75,7 @@ pub fn run_steps(
         last_converged: None,
         arc_blocked: false,
         cuts_since_commit: 0,
+        law_failures: BTreeMap::new(),
         force_sum: (0.0, 0),
         since_output: 0,
         model,
@@ -71,18 +84,21 @@ pub fn run_steps(
         nonlinear,
         observers,
     };
+    for o in driver.observers.iter_mut() {
+        o.started(driver.model, &driver.summary)?;
+    }
     driver.initial_state()?;
-    let mut failure = None;
+    let mut ending = None;
     let mut step_start = 0.0;
     for si in 0..plan.steps.len() {
-        if let Some(message) = driver.run_step(si, step_start)? {
-            failure = Some(message);
+        if let Some(end) = driver.run_step(si, step_start)? {
+            ending = Some(end);
             break;
         }
         step_start = plan.steps[si].end_time;
         driver.crossing = None;
     }
-    driver.finish(failure, wall)
+    driver.finish(ending, wall)
 }
 
 fn initial_summary(model: &Model, plan: &RunPlan, factor_nnz: usize) -> RunSummary {
@@ -134,6 +150,9 @@ struct Driver<'a> {
     /// Set when arc length had to hand back to load control; cleared by the next commit.
     arc_blocked: bool,
     cuts_since_commit: usize,
+    /// Interface-law failures that cut increments, each distinct one once: (law, interface,
+    /// message) -> (times, first point).
+    law_failures: BTreeMap<(String, String, String), (usize, usize)>,
     /// Sum and count of the force norms of the converged increments (the Newton reference
     /// force is their mean).
     force_sum: (f64, usize),
@@ -175,12 +194,15 @@ impl Driver<'_> {
         ReferenceScales { displacement: norm(&self.model.displacement), force: mean }
     }
 
-    /// Runs step `si` from `step_start`; Some(message) when the run cannot go on.
-    fn run_step(&mut self, si: usize, step_start: f64) -> Result<Option<String>> {
+    /// Runs step `si` from `step_start`; Some(ending) when the run cannot or must not go on.
+    fn run_step(&mut self, si: usize, step_start: f64) -> Result<Option<Ending>> {
         let step = &self.plan.steps[si];
         self.load.start_step(&step.incrementation);
         self.since_output = 0;
         while self.t < step.end_time - 1e-12 * self.t_end {
+            if self.plan.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::Relaxed)) {
+                return Ok(Some(Ending::Interrupted));
+            }
             let breakpoints = std::mem::take(&mut self.breakpoints);
             let window = StepWindow {
                 t: self.t,
@@ -210,7 +232,7 @@ impl Driver<'_> {
             match flow {
                 Flow::Continue => {}
                 Flow::StepDone => break,
-                Flow::Stop(message) => return Ok(Some(message)),
+                Flow::Stop(message) => return Ok(Some(Ending::Failed(message))),
             }
         }
         Ok(None)
@@ -218,6 +240,11 @@ impl Driver<'_> {
 
     /// A failed attempt: roll back, then cut the active control (or start arc length).
     fn failed(&mut self, si: usize, failure: &IncrementFailure) -> Flow {
+        if let IncrementFailure::Error(CoreError::LawFailure { law, interface, point, message, .. }) = failure {
+            let entry =
+                self.law_failures.entry((law.clone(), interface.clone(), message.clone())).or_insert((0, *point));
+            entry.0 += 1;
+        }
         self.model.rollback();
         self.load.forget();
         self.summary.cut_increments += 1;
@@ -357,15 +384,29 @@ impl Driver<'_> {
         Ok(())
     }
 
-    fn finish(mut self, failure: Option<String>, wall: Instant) -> Result<RunSummary> {
+    fn finish(mut self, ending: Option<Ending>, wall: Instant) -> Result<RunSummary> {
         let (events, warnings) = self.tracker.finish(self.t);
         let s = &mut self.summary;
         s.final_time = self.t;
         s.plastic_dissipation = self.model.dissipation();
         s.wall_seconds = wall.elapsed().as_secs_f64();
-        s.status = if failure.is_some() { "failed".into() } else { "completed".into() };
-        s.message = failure;
+        (s.status, s.message) = match ending {
+            None => ("completed".into(), None),
+            Some(Ending::Failed(message)) => ("failed".into(), Some(message)),
+            Some(Ending::Interrupted) => (
+                "interrupted".into(),
+                Some(format!(
+                    "interrupted at t = {}; every committed increment is in history.csv and the VTK series",
+                    self.t
+                )),
+            ),
+        };
         s.warnings = warnings;
+        for ((law, interface, message), (times, point)) in &self.law_failures {
+            s.warnings.push(format!(
+                "law '{law}' on interface '{interface}' failed {times} time(s), first at point {point}: {message}"
+            ));
+        }
         s.interfaces = self.tracker.summaries().to_vec();
         for o in self.observers.iter_mut() {
             for e in &events {

@@ -38,6 +38,10 @@ pub struct CommittedIncrement {
 
 /// Something that records the run.
 pub trait Observer {
+    /// The run starts; `summary` has status "running" and the model's sizes.
+    fn started(&mut self, _model: &Model, _summary: &RunSummary) -> Result<()> {
+        Ok(())
+    }
     /// A committed state: the initial one (step 0) and every converged increment.
     fn committed(&mut self, model: &Model, increment: &CommittedIncrement) -> Result<()>;
     /// An interface event (contact gained or lost, a jump, a limit point, a warning).

@@ -1,5 +1,5 @@
-//! `summary.json`: how the run went and each interface's key numbers; written at the end of
-//! every run, failed ones included.
+//! `summary.json`: how the run went and each interface's key numbers; written when the run
+//! starts (status "running") and again when it ends, failed and interrupted runs included.
 
 use super::{CommittedIncrement, Observer};
 use crate::error::Result;
@@ -94,13 +94,28 @@ impl SummaryWriter {
     }
 }
 
+impl SummaryWriter {
+    fn write(&self, summary: &RunSummary) -> Result<()> {
+        let json = serde_json::to_string_pretty(summary).expect("summary serializes");
+        write_atomically(&self.path, json.as_bytes())
+    }
+}
+
 impl Observer for SummaryWriter {
+    /// A summary that says "running" until the run ends, so a killed run never leaves one that
+    /// claims more than history.csv holds.
+    fn started(&mut self, _model: &Model, summary: &RunSummary) -> Result<()> {
+        let mut running = summary.clone();
+        running.message =
+            Some("the run has not ended (or was killed): history.csv holds its committed increments".into());
+        self.write(&running)
+    }
+
     fn committed(&mut self, _model: &Model, _increment: &CommittedIncrement) -> Result<()> {
         Ok(())
     }
 
     fn finished(&mut self, _model: &Model, summary: &RunSummary) -> Result<()> {
-        let json = serde_json::to_string_pretty(summary).expect("summary serializes");
-        write_atomically(&self.path, json.as_bytes())
+        self.write(summary)
     }
 }

@@ -47,7 +47,9 @@ pub fn parse_table(text: &str) -> Result<Table, String> {
                 match k.trim() {
                     "work_of_adhesion" => {
                         table.work_of_adhesion =
-                            Some(v.parse().map_err(|_| format!("line {n}: work_of_adhesion '{v}' is not a number"))?)
+                            Some(v.parse::<f64>().ok().filter(|w| w.is_finite() && *w > 0.0).ok_or_else(|| {
+                                format!("line {n}: work_of_adhesion '{v}' is not a finite number > 0")
+                            })?)
                     }
                     "description" => table.description = Some(v),
                     "provenance" => table.provenance = Some(v),
@@ -70,8 +72,9 @@ pub fn parse_table(text: &str) -> Result<Table, String> {
         if f.len() != 5 {
             return Err(format!("line {n}: expected 5 columns, found {}", f.len()));
         }
-        let num = |k: usize, name: &str| {
-            f[k].parse::<f64>().map_err(|_| format!("line {n}: {name} '{}' is not a number", f[k]))
+        let num = |k: usize, name: &str| match f[k].parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => Err(format!("line {n}, column {} ({name}): expected a finite number, found '{}'", k + 1, f[k])),
         };
         let loading = match f[3] {
             "loading" => true,

@@ -6,9 +6,9 @@
 //! error (message written to the caller's buffer) and 2 when the law panicked (the panic is
 //! caught here, never unwinds into the host).
 
+use crate::panic_guard::guarded;
 use crate::{Law, MixedResponse, Response};
 use std::ffi::{CStr, c_char, c_void};
-use std::panic::{AssertUnwindSafe, catch_unwind};
 
 /// Version of this ABI. Bump on any change of the structs or function signatures below.
 /// Version 2 added mixed-mode laws: `gap_dimension` and `evaluate_mixed`.
@@ -184,14 +184,6 @@ fn write_message(text: &str, buffer: *mut c_char, len: usize) {
     }
 }
 
-fn panic_text(payload: Box<dyn std::any::Any + Send>) -> String {
-    payload
-        .downcast_ref::<&str>()
-        .map(|s| s.to_string())
-        .or_else(|| payload.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "unknown panic".into())
-}
-
 unsafe extern "C" fn create<L: Law>(
     parameters: *const f64,
     n_parameters: u32,
@@ -200,7 +192,7 @@ unsafe extern "C" fn create<L: Law>(
     message: *mut c_char,
     message_len: usize,
 ) -> i32 {
-    let result = catch_unwind(AssertUnwindSafe(|| {
+    let result = guarded(|| {
         // SAFETY: the host passes n_parameters values.
         let p = if n_parameters == 0 {
             &[][..]
@@ -210,7 +202,7 @@ unsafe extern "C" fn create<L: Law>(
         // SAFETY: null or a NUL-terminated UTF-8 string owned by the host for this call.
         let text = if config.is_null() { "" } else { unsafe { CStr::from_ptr(config) }.to_str().unwrap_or("") };
         L::create(p, text)
-    }));
+    });
     let write = |law: L| {
         // SAFETY: `instance` is a valid out-pointer.
         unsafe { *instance = Box::into_raw(Box::new(law)) as *mut c_void };
@@ -220,21 +212,21 @@ unsafe extern "C" fn create<L: Law>(
 
 unsafe extern "C" fn destroy<L: Law>(instance: *mut c_void) {
     if !instance.is_null() {
-        let _ = catch_unwind(AssertUnwindSafe(|| {
+        let _ = guarded(|| {
             // SAFETY: created by `create::<L>` through Box::into_raw.
             drop(unsafe { Box::from_raw(instance as *mut L) });
-        }));
+        });
     }
 }
 
 unsafe extern "C" fn initialize_state<L: Law>(instance: *const c_void, state: *mut f64) -> i32 {
-    let r = catch_unwind(AssertUnwindSafe(|| {
+    let r = guarded(|| {
         // SAFETY: a live instance and a state buffer of N_STATE values.
         let law = unsafe { &*(instance as *const L) };
         let s =
             if L::N_STATE == 0 { &mut [][..] } else { unsafe { std::slice::from_raw_parts_mut(state, L::N_STATE) } };
         law.initialize_state(s);
-    }));
+    });
     if r.is_ok() { STATUS_OK } else { STATUS_PANIC }
 }
 
@@ -247,8 +239,8 @@ unsafe fn with_states<L: Law, R>(
     state_committed: *const f64,
     state_trial: *mut f64,
     f: impl FnOnce(&L, &[f64], &mut [f64]) -> Result<R, String>,
-) -> std::thread::Result<Result<R, String>> {
-    catch_unwind(AssertUnwindSafe(|| {
+) -> Result<Result<R, String>, String> {
+    guarded(|| {
         // SAFETY: guaranteed by the caller.
         let law = unsafe { &*(instance as *const L) };
         let (old, new) = if L::N_STATE == 0 {
@@ -262,14 +254,14 @@ unsafe fn with_states<L: Law, R>(
             }
         };
         f(law, old, new)
-    }))
+    })
 }
 
 /// Writes the outcome of the call `what`: the result through `write`, or the error or panic
 /// text into the caller's message buffer; returns the status.
 fn finish<R>(
     what: &str,
-    result: std::thread::Result<Result<R, String>>,
+    result: Result<Result<R, String>, String>,
     write: impl FnOnce(R),
     message: *mut c_char,
     message_len: usize,
@@ -284,7 +276,7 @@ fn finish<R>(
             STATUS_ERROR
         }
         Err(p) => {
-            write_message(&format!("panic in {what}: {}", panic_text(p)), message, message_len);
+            write_message(&format!("panic in {what}: {p}"), message, message_len);
             STATUS_PANIC
         }
     }

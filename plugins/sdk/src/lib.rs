@@ -34,6 +34,7 @@
 //! (a frictionless rigid flat) call `evaluate`. Normal-only laws keep the defaults.
 
 pub mod abi;
+pub mod panic_guard;
 
 pub use abi::{ABI_VERSION, LawDescriptor};
 use std::ffi::CStr;

@@ -1,0 +1,53 @@
+//! The output folder of a run: never overwritten silently. A run goes into a new or empty
+//! folder; with `--overwrite` it may replace an earlier Stiction run (a folder holding
+//! `summary.json`, `history.csv` or a sweep's `sweep.json`), never a folder of other files.
+
+use crate::error::{Result, StictionError};
+use std::path::Path;
+
+/// Files whose presence marks a folder as written by an earlier run of Stiction.
+const RUN_MARKERS: [&str; 3] = ["summary.json", "history.csv", "sweep.json"];
+
+/// Makes `out` ready for a new run: creates it, or empties it when `overwrite` is given and it
+/// holds an earlier run; refuses a non-empty folder otherwise.
+pub fn prepare(out: &Path, overwrite: bool) -> Result<()> {
+    let io = |source| StictionError::Core(stiction_core::CoreError::Write { path: out.to_path_buf(), source });
+    if out.exists() && !out.is_dir() {
+        return Err(StictionError::Output {
+            path: out.to_path_buf(),
+            message: "is a file, not a folder; give another --out".into(),
+        });
+    }
+    let entries = match std::fs::read_dir(out) {
+        Ok(entries) => entries.filter_map(|e| e.ok()).count(),
+        Err(_) => 0,
+    };
+    if entries > 0 {
+        let earlier_run = RUN_MARKERS.iter().any(|m| out.join(m).exists());
+        match (overwrite, earlier_run) {
+            (false, true) => {
+                return Err(StictionError::Output {
+                    path: out.to_path_buf(),
+                    message: "holds an earlier run; give --overwrite to replace it, or another --out".into(),
+                });
+            }
+            (false, false) => {
+                return Err(StictionError::Output {
+                    path: out.to_path_buf(),
+                    message: format!("is not empty ({entries} entries); give an empty or new folder with --out"),
+                });
+            }
+            (true, false) => {
+                return Err(StictionError::Output {
+                    path: out.to_path_buf(),
+                    message: format!(
+                        "is not empty and holds no earlier run ({}); --overwrite replaces only an earlier run's folder",
+                        RUN_MARKERS.join(", ")
+                    ),
+                });
+            }
+            (true, true) => std::fs::remove_dir_all(out).map_err(io)?,
+        }
+    }
+    std::fs::create_dir_all(out).map_err(io)
+}

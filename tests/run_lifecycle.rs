@@ -1,0 +1,233 @@
+//! The life of a run as the `stiction` program lives it: Ctrl-C (SIGINT) stops after the
+//! increment in progress with status "interrupted" and exit 130; SIGKILL leaves consistent
+//! files; an earlier run is never overwritten without `--overwrite`; a plugin that panics is
+//! reported once per distinct failure with a count; two plugins declaring one law name are
+//! refused.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = root().join("target").join("test-out").join("lifecycle").join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.parent().unwrap()).unwrap();
+    dir
+}
+
+fn stiction(args: &[&str]) -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_stiction"));
+    cmd.args(args).current_dir(root());
+    cmd
+}
+
+/// Exit status and stderr of a finished command.
+fn outcome(cmd: &mut Command) -> (Option<i32>, String) {
+    let out = cmd.output().unwrap();
+    (out.status.code(), String::from_utf8_lossy(&out.stderr).to_string())
+}
+
+/// Data rows in `out/history.csv` (0 while it does not exist).
+fn history_rows(out: &Path) -> usize {
+    std::fs::read_to_string(out.join("history.csv")).map_or(0, |t| t.lines().count().saturating_sub(1))
+}
+
+/// Starts the quick rough-sphere case into `out` and waits until it has committed `rows`
+/// increments.
+fn start_quick_case(out: &Path, rows: usize) -> Child {
+    let mut child = stiction(&["run", "cases/ru-rough-sphere/rough-w6-quick.toml", "--quiet", "--out"])
+        .arg(out)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while history_rows(out) < rows {
+        assert!(child.try_wait().unwrap().is_none(), "the run ended before {rows} increments");
+        assert!(start.elapsed() < Duration::from_secs(300), "no {rows} increments within 300 s");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    child
+}
+
+fn signal(child: &Child, name: &str) {
+    let status = Command::new("kill").args([format!("-{name}"), child.id().to_string()]).status().unwrap();
+    assert!(status.success());
+}
+
+/// Every file a stopped run left is whole: each history row has the header's columns of
+/// numbers, every frame a `.pvd` lists exists and reads as VTK, and no temporary file is left
+/// in place of a final one. Returns the history's rows and the last row's time.
+fn check_files_whole(out: &Path) -> (usize, f64) {
+    let text = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let mut lines = text.lines();
+    let columns = lines.next().unwrap().split(',').count();
+    let mut last_time = f64::NAN;
+    let mut rows = 0;
+    for line in lines {
+        let values: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+        assert_eq!(values.len(), columns, "a partial history row: {line}");
+        last_time = values[2];
+        rows += 1;
+    }
+    assert!(text.ends_with('\n'), "history.csv ends inside a row");
+    let mut frames = 0;
+    for entry in std::fs::read_dir(out).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "pvd") {
+            let pvd = std::fs::read_to_string(&path).unwrap();
+            assert!(pvd.trim_end().ends_with("</VTKFile>"), "{} is cut short", path.display());
+            for file in pvd.split("file=\"").skip(1).map(|s| &s[..s.find('"').unwrap()]) {
+                vtkio::Vtk::import(out.join(file)).unwrap_or_else(|e| panic!("{file} does not read: {e}"));
+                frames += 1;
+            }
+        }
+    }
+    assert!(frames > rows, "the .pvd files list {frames} frames for {rows} increments");
+    (rows, last_time)
+}
+
+fn summary(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn ctrl_c_finishes_the_increment_writes_an_interrupted_summary_and_exits_130() {
+    let out = scratch("sigint");
+    let child = start_quick_case(&out, 8);
+    signal(&child, "INT");
+    let result = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted at t = ") && !stderr.contains("panicked"), "{stderr}");
+    let (rows, last_time) = check_files_whole(&out);
+    let s = summary(&out);
+    assert_eq!(s["status"], "interrupted", "{s}");
+    assert_eq!(s["increments"].as_u64().unwrap() as usize + 1, rows, "summary and history disagree");
+    assert!((s["final_time"].as_f64().unwrap() - last_time).abs() < 1e-9, "{s}");
+    assert!(last_time > 0.0 && last_time < 2.0, "t = {last_time}");
+    println!("SIGINT after {rows} history rows: stopped at t = {last_time}, exit 130");
+}
+
+#[test]
+fn sigkill_leaves_whole_files_and_a_summary_that_says_the_run_did_not_end() {
+    let out = scratch("sigkill");
+    let mut child = start_quick_case(&out, 12);
+    signal(&child, "KILL");
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), None, "killed by a signal");
+    let (rows, _) = check_files_whole(&out);
+    let s = summary(&out);
+    assert_eq!(s["status"], "running", "{s}");
+    assert!(s["message"].as_str().unwrap().contains("has not ended (or was killed)"), "{s}");
+    println!("SIGKILL after {rows} history rows: files whole");
+}
+
+#[test]
+fn an_earlier_run_is_replaced_only_with_overwrite() {
+    let out = scratch("overwrite");
+    let out_arg = out.to_str().unwrap();
+    let case = "cases/validation/lame-sphere-axisym.toml";
+    let (code, stderr) = outcome(&mut stiction(&["run", case, "--quiet", "--out", out_arg]));
+    assert_eq!(code, Some(0), "{stderr}");
+    std::fs::write(out.join("stale.vtu"), "from an older run").unwrap();
+    let (code, stderr) = outcome(&mut stiction(&["run", case, "--quiet", "--out", out_arg]));
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("holds an earlier run; give --overwrite"), "{stderr}");
+    assert!(out.join("stale.vtu").exists() && summary(&out)["status"] == "completed");
+    let (code, stderr) = outcome(&mut stiction(&["run", case, "--quiet", "--overwrite", "--out", out_arg]));
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(!out.join("stale.vtu").exists(), "files of the earlier run must go");
+    // a folder of other files is never emptied, even with --overwrite
+    let foreign = scratch("foreign");
+    std::fs::create_dir_all(&foreign).unwrap();
+    std::fs::write(foreign.join("notes.txt"), "mine").unwrap();
+    let (code, stderr) =
+        outcome(&mut stiction(&["run", case, "--quiet", "--overwrite", "--out", foreign.to_str().unwrap()]));
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("holds no earlier run") && foreign.join("notes.txt").exists(), "{stderr}");
+}
+
+/// Builds a copy of the template law that panics whenever the surfaces overlap, and returns
+/// the library's path.
+fn panicking_plugin() -> PathBuf {
+    let dir = root().join("target").join("test-out").join("lifecycle-plugin");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("src")).unwrap();
+    let template = root().join("plugins").join("template");
+    let manifest = std::fs::read_to_string(template.join("Cargo.toml"))
+        .unwrap()
+        .replace("name = \"my-stiction-law\"", "name = \"panicking-law\"")
+        .replace("path = \"../sdk\"", &format!("path = \"{}\"", root().join("plugins/sdk").display()));
+    std::fs::write(dir.join("Cargo.toml"), manifest).unwrap();
+    let source = std::fs::read_to_string(template.join("src/lib.rs"))
+        .unwrap()
+        .replace("c\"exponential-adhesion\"", "c\"panicking-adhesion\"")
+        .replace(
+            "        // Cap the exponential",
+            "        if gap < 0.0 {\n            panic!(\"the surfaces overlap\");\n        }\n        // Cap the exponential",
+        );
+    std::fs::write(dir.join("src/lib.rs"), source).unwrap();
+    let build = root().join("target").join("plugin-build");
+    let out = Command::new(option_env!("CARGO").unwrap_or("cargo"))
+        .args(["build", "--quiet", "--manifest-path"])
+        .arg(dir.join("Cargo.toml"))
+        .arg("--target-dir")
+        .arg(&build)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    build.join("debug").join("libpanicking_law.so")
+}
+
+#[test]
+fn a_panicking_plugin_is_reported_once_with_a_count_and_duplicate_law_names_are_refused() {
+    let library = panicking_plugin();
+    let plugins = scratch("plugins");
+    std::fs::create_dir_all(&plugins).unwrap();
+    std::fs::copy(&library, plugins.join("libpanicking_law.so")).unwrap();
+    let out = scratch("panicking");
+    let plugin_path = format!("plugin_path=[\"{}\"]", plugins.display());
+    let args = [
+        "run",
+        "cases/validation/hertz-axisym.toml",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        &plugin_path,
+        "--set",
+        "interfaces.0.law=\"panicking-adhesion\"",
+        "--set",
+        "interfaces.0.parameters={ w = 0.5 }",
+        "--set",
+        "mesh.parameters.h_contact=8.0",
+    ];
+    let (code, stderr) = outcome(&mut stiction(&args));
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(!stderr.contains("panicked at"), "the plugin panics must not reach stderr:\n{stderr}");
+    let reports = stderr.matches("panic in evaluate: the surfaces overlap (at src/lib.rs:").count();
+    let counted = stderr.lines().find(|l| l.contains("law 'panicking-adhesion' on interface 'flat' failed"));
+    let times: usize = counted
+        .and_then(|l| l.split(" failed ").nth(1))
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no counted report:\n{stderr}"));
+    assert!(times >= 2 && reports <= 2, "{times} failures, reported {reports} times:\n{stderr}");
+    assert_eq!(summary(&out)["status"], "failed");
+    // a second library declaring the same law name in the same folder
+    std::fs::copy(&library, plugins.join("libpanicking_law_copy.so")).unwrap();
+    let (code, stderr) =
+        outcome(&mut stiction(&[&["check", "cases/validation/hertz-axisym.toml"], &args[5..]].concat()));
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.contains("2 libraries declare the law 'panicking-adhesion'")
+            && stderr.contains("libpanicking_law.so")
+            && stderr.contains("libpanicking_law_copy.so"),
+        "{stderr}"
+    );
+}
