@@ -10,6 +10,8 @@ pub struct Curve {
     pub label: String,
     /// (approach, force, contact area) per converged increment.
     pub points: Vec<(f64, f64, f64)>,
+    /// Contact resistance (ohm) per converged increment, when the run models it.
+    pub resistance: Option<Vec<f64>>,
 }
 
 /// Reads approach, force and contact_area from a `history.csv` (None if it has no interface).
@@ -19,13 +21,13 @@ pub fn read_history(path: &Path, label: &str) -> Option<Curve> {
     let header: Vec<&str> = lines.next()?.split(',').collect();
     let col = |n: &str| header.iter().position(|h| *h == n);
     let (ia, i_f, iarea) = (col("approach")?, col("force")?, col("contact_area")?);
-    let points = lines
-        .filter_map(|l| {
-            let v: Vec<f64> = l.split(',').filter_map(|x| x.parse().ok()).collect();
-            (v.len() == header.len()).then(|| (v[ia], v[i_f], v[iarea]))
-        })
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').filter_map(|x| x.parse().ok()).collect::<Vec<f64>>())
+        .filter(|v| v.len() == header.len())
         .collect();
-    Some(Curve { label: label.to_string(), points })
+    let points = rows.iter().map(|v| (v[ia], v[i_f], v[iarea])).collect();
+    let resistance = col("contact_resistance").map(|ir| rows.iter().map(|v| v[ir]).collect());
+    Some(Curve { label: label.to_string(), points, resistance })
 }
 
 /// Splits a curve into monotone legs: (is_loading, points).
@@ -44,7 +46,7 @@ fn legs(points: &[(f64, f64)]) -> Vec<(bool, Vec<(f64, f64)>)> {
 fn draw<DB: DrawingBackend>(
     root: DrawingArea<DB, plotters::coord::Shift>,
     title: &str,
-    y_label: &str,
+    (x_label, y_label): (&str, &str),
     curves: &[(String, Vec<(f64, f64)>)],
 ) -> Result<(), String>
 where
@@ -71,7 +73,7 @@ where
         .y_label_area_size(70)
         .build_cartesian_2d((x0 - px)..(x1 + px), (y0 - py)..(y1 + py))
         .map_err(|e| e.to_string())?;
-    chart.configure_mesh().x_desc("approach (nm)").y_desc(y_label).draw().map_err(|e| e.to_string())?;
+    chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw().map_err(|e| e.to_string())?;
     for (i, (label, pts)) in curves.iter().enumerate() {
         let color = Palette99::pick(i).to_rgba();
         let mut first = true;
@@ -103,15 +105,106 @@ pub fn plot_curves(dir: &Path, prefix: &str, title: &str, curves: &[Curve]) -> R
         curves.iter().map(|c| (c.label.clone(), c.points.iter().map(|p| (p.0, p.1 * 1e-3)).collect())).collect();
     let area: Vec<(String, Vec<(f64, f64)>)> =
         curves.iter().map(|c| (c.label.clone(), c.points.iter().map(|p| (p.0, p.2)).collect())).collect();
-    for (name, data, y) in
-        [("force_approach", &force, "force (uN, + compressive)"), ("area_approach", &area, "real contact area (nm^2)")]
-    {
+    let approach = "approach (nm)";
+    let mut plots = vec![
+        ("force_approach", force, (approach, "force (uN, + compressive)")),
+        ("area_approach", area, (approach, "real contact area (nm^2)")),
+    ];
+    if curves.iter().any(|c| c.resistance.is_some()) {
+        // log10 R where there is contact (R finite)
+        let log_r = |by_force: bool| -> Vec<(String, Vec<(f64, f64)>)> {
+            curves
+                .iter()
+                .filter_map(|c| {
+                    let r = c.resistance.as_ref()?;
+                    let points = c
+                        .points
+                        .iter()
+                        .zip(r)
+                        .filter(|(_, r)| r.is_finite() && **r > 0.0)
+                        .map(|(p, r)| (if by_force { p.1 * 1e-3 } else { p.0 }, r.log10()))
+                        .collect();
+                    Some((c.label.clone(), points))
+                })
+                .collect()
+        };
+        let log_label = "log10 contact resistance (ohm)";
+        plots.push(("resistance_approach", log_r(false), (approach, log_label)));
+        plots.push(("resistance_force", log_r(true), ("force (uN, + compressive)", log_label)));
+    }
+    for (name, data, axes) in &plots {
         let png = dir.join(format!("{prefix}{name}.png"));
         let svg = dir.join(format!("{prefix}{name}.svg"));
-        draw(BitMapBackend::new(&png, (900, 600)).into_drawing_area(), title, y, data)?;
-        draw(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), title, y, data)?;
+        draw(BitMapBackend::new(&png, (900, 600)).into_drawing_area(), title, *axes, data)?;
+        draw(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), title, *axes, data)?;
     }
     Ok(())
+}
+
+/// Writes `cycles.{png,svg}` in `dir`: the change of each cycle's maximum force, pull-off
+/// force, maximum real area and contact resistance at the maximum force from the first cycle's,
+/// in percent, on one axis of at least +-1%, so a drift over the cycles (or its absence) shows at
+/// a glance; the values themselves are in cycles.csv.
+pub fn plot_cycles(dir: &Path, title: &str, cycles: &[stiction_core::record::CycleSummary]) -> Result<(), String> {
+    type Quantity = fn(&stiction_core::record::CycleSummary) -> Option<f64>;
+    let quantities: [(&str, Quantity); 4] = [
+        ("max force", |c| Some(c.max_force)),
+        ("pull-off force", |c| Some(c.pull_off_force)),
+        ("max real area", |c| Some(c.max_contact_area)),
+        ("resistance at max force", |c| c.contact_resistance_at_max_force),
+    ];
+    let mut series = Vec::new();
+    for (label, value) in quantities {
+        let Some(first) = cycles.first().and_then(value).filter(|v| v.is_finite() && *v != 0.0) else { continue };
+        let points: Vec<(f64, f64)> = cycles
+            .iter()
+            .filter_map(|c| Some((c.cycle as f64, 100.0 * (value(c)? / first - 1.0))))
+            .filter(|p| p.1.is_finite())
+            .collect();
+        series.push((label.to_string(), points));
+    }
+    let span = series.iter().flat_map(|(_, p)| p.iter().map(|q| q.1.abs())).fold(1.0f64, f64::max) * 1.1;
+    let last = cycles.len().max(2) as f64;
+    fn chart<DB: DrawingBackend>(
+        root: DrawingArea<DB, plotters::coord::Shift>,
+        title: &str,
+        (last, span): (f64, f64),
+        series: &[(String, Vec<(f64, f64)>)],
+    ) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 22))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(0.8..(last + 0.2), -span..span)
+            .map_err(|e| e.to_string())?;
+        chart.configure_mesh().x_desc("cycle").y_desc("change from cycle 1 (%)").draw().map_err(|e| e.to_string())?;
+        for (i, (label, points)) in series.iter().enumerate() {
+            let color = Palette99::pick(i).to_rgba();
+            chart
+                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+                .map_err(|e| e.to_string())?
+                .label(label.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+            chart.draw_series(points.iter().map(|p| Circle::new(*p, 4, color.filled()))).map_err(|e| e.to_string())?;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()
+            .map_err(|e| e.to_string())?;
+        root.present().map_err(|e| e.to_string())
+    }
+    let png = dir.join("cycles.png");
+    let svg = dir.join("cycles.svg");
+    chart(BitMapBackend::new(&png, (900, 600)).into_drawing_area(), title, (last, span), &series)?;
+    chart(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), title, (last, span), &series)
 }
 
 type Branch = (String, Vec<(f64, f64, f64)>, Vec<f64>, Vec<f64>, (f64, f64));
@@ -236,6 +329,12 @@ impl stiction_core::record::Observer for RunPlots {
         if let Some(curve) = read_history(&self.directory.join("history.csv"), &self.name) {
             if let Err(e) = plot_curves(&self.directory, "", &self.name, &[curve]) {
                 eprintln!("warning: plots of '{}' not written: {e}", self.name);
+            }
+        }
+        if let Some(i) = summary.interfaces.iter().find(|i| i.cycles.len() > 1) {
+            let title = format!("{}: {} per load cycle", self.name, i.name);
+            if let Err(e) = plot_cycles(&self.directory, &title, &i.cycles) {
+                eprintln!("warning: cycle plot of '{}' not written: {e}", self.name);
             }
         }
         Ok(())

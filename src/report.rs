@@ -82,6 +82,14 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
                 significant(i.max_contact_area),
                 i.n_contact_at_max_force
             ));
+            if let Some(r) = i.contact_resistance_at_max_force {
+                let half = i.contact_resistance_at_force.iter().find(|h| h.fraction_of_max_force == 0.5);
+                let ohm = |r: Option<f64>| r.map_or("-".to_string(), |r| format!("{} ohm", significant(r)));
+                let hysteresis = half.map_or(String::new(), |h| {
+                    format!("; at half the max force {} loading, {} unloading", ohm(h.loading), ohm(h.unloading))
+                });
+                lines.push(format!("  {}: contact resistance {} at max force{hysteresis}", i.name, ohm(Some(r))));
+            }
         }
     }
     if summary.interfaces.is_empty() {

@@ -12,7 +12,7 @@ use stiction_core::CoreError;
 use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
 use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
 use stiction_core::path::{RunPlan, run_steps};
-use stiction_core::record::{EventsRecorder, HistoryRecorder, Observer, SummaryWriter, VtkRecorder};
+use stiction_core::record::{CyclesWriter, EventsRecorder, HistoryRecorder, Observer, SummaryWriter, VtkRecorder};
 
 pub use stiction_core::record::{InterfaceSummary, RunSummary};
 
@@ -60,6 +60,7 @@ fn observers(
         list.push(Box::new(VtkRecorder::new(out, &case.name, model)));
     }
     list.push(Box::new(SummaryWriter::new(out)));
+    list.push(Box::new(CyclesWriter::new(out)));
     list.push(Box::new(crate::plots::RunPlots::new(out, &case.name)));
     if progress {
         list.push(Box::new(crate::progress::ProgressDisplay::new()));

@@ -14,6 +14,9 @@ pub struct InterfaceObservables {
     pub n_contact: usize,
     /// Energy dissipated so far by a viscous regularisation (None where there is none).
     pub viscous_dissipation: Option<f64>,
+    /// Electrical contact resistance in ohm (None where it is not modelled; infinite with no
+    /// contact).
+    pub contact_resistance: Option<f64>,
 }
 
 /// One `history.csv` value: integers are written as integers.
@@ -26,7 +29,7 @@ pub enum Value {
 impl InterfaceObservables {
     /// Column names and values for `history.csv`, in a fixed order, present fields only.
     pub fn columns(&self) -> Vec<(&'static str, Value)> {
-        let mut out = Vec::with_capacity(5);
+        let mut out = Vec::with_capacity(6);
         if let Some(a) = self.approach {
             out.push(("approach", Value::Real(a)));
         }
@@ -35,6 +38,9 @@ impl InterfaceObservables {
         out.push(("n_contact", Value::Count(self.n_contact)));
         if let Some(v) = self.viscous_dissipation {
             out.push(("viscous_dissipation", Value::Real(v)));
+        }
+        if let Some(r) = self.contact_resistance {
+            out.push(("contact_resistance", Value::Real(r)));
         }
         out
     }

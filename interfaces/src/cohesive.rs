@@ -256,6 +256,7 @@ impl Contribution for CohesiveElements {
             contact_area: area,
             n_contact: count as usize,
             viscous_dissipation: None,
+            contact_resistance: None,
         })
     }
 

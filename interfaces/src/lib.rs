@@ -10,6 +10,7 @@
 
 pub mod asperity_layout;
 pub mod cohesive;
+pub mod contact_resistance;
 pub mod mesh_split;
 pub mod plugin;
 pub mod point_law;

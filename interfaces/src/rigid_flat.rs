@@ -23,6 +23,7 @@
 //! continuous in pseudo-time. Its dissipated energy, sum zeta |k_c| (g - g_c)^2 / dt w, is
 //! accumulated and reported so it can be kept small.
 
+use crate::contact_resistance::{ContactSpot, ResistanceModel};
 use crate::point_law::{evaluate_point, initial_states};
 use crate::surface_locator::SurfaceLocator;
 use std::sync::Arc;
@@ -51,6 +52,8 @@ pub struct RigidFlatSpec {
     pub extra_order: usize,
     /// Viscous regularisation zeta (0: none), a pseudo-time: see the module documentation.
     pub viscosity: f64,
+    /// Electrical contact resistance, computed at every commit when given.
+    pub resistance: Option<ResistanceModel>,
 }
 
 /// A discrete point: in-plane coordinates (along two directions orthogonal to the normal,
@@ -99,6 +102,8 @@ pub struct RigidFlat {
     viscous_committed: f64,
     viscous_trial: f64,
     trial_time: f64,
+    resistance: Option<ResistanceModel>,
+    resistance_committed: f64,
 }
 
 fn unit_normal(spec: &RigidFlatSpec, kinematics: Kinematics) -> Result<[f64; 3], CoreError> {
@@ -298,6 +303,8 @@ impl RigidFlat {
             viscous_committed: 0.0,
             viscous_trial: 0.0,
             trial_time: 0.0,
+            resistance: spec.resistance,
+            resistance_committed: f64::INFINITY,
         })
     }
 
@@ -314,6 +321,27 @@ impl RigidFlat {
     /// Reference positions of the points on the body.
     pub fn positions(&self) -> Vec<[f64; 3]> {
         self.points.iter().map(|p| p.position).collect()
+    }
+
+    /// The committed contact spots: with a force-per-point law (asperities) each point in
+    /// contact, of radius sqrt(area / pi), centred at its position projected on the flat; with a
+    /// traction law (a smooth surface) one spot of the whole real contact area.
+    pub fn contact_spots(&self) -> Vec<ContactSpot> {
+        let radius = |area: f64| (area / std::f64::consts::PI).sqrt();
+        if self.law.kind() == LawKind::TractionPerArea {
+            let area = self.committed_summary[2];
+            return if area > 0.0 { vec![ContactSpot { center: [0.0; 3], radius: radius(area) }] } else { Vec::new() };
+        }
+        let n = self.normal;
+        let (contact, area) = (&self.committed_fields[3], &self.committed_fields[2]);
+        (0..self.points.len())
+            .filter(|&i| contact[i] > 0.0 && area[i] > 0.0)
+            .map(|i| {
+                let p = self.points[i].position;
+                let h = p[0] * n[0] + p[1] * n[1] + p[2] * n[2];
+                ContactSpot { center: [p[0] - h * n[0], p[1] - h * n[1], p[2] - h * n[2]], radius: radius(area[i]) }
+            })
+            .collect()
     }
 }
 
@@ -417,6 +445,9 @@ impl Contribution for RigidFlat {
                 *f = self.state_committed[i * ns + k];
             }
         }
+        if let Some(model) = self.resistance {
+            self.resistance_committed = model.total(&self.contact_spots());
+        }
     }
 
     fn rollback(&mut self) {
@@ -431,6 +462,7 @@ impl Contribution for RigidFlat {
             contact_area: area,
             n_contact: count as usize,
             viscous_dissipation: Some(self.viscous_committed),
+            contact_resistance: self.resistance.map(|_| self.resistance_committed),
         })
     }
 

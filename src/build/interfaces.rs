@@ -187,6 +187,17 @@ fn rigid_flat(
         initial_gap: spec.initial_gap,
         extra_order: spec.quadrature_order,
         viscosity: spec.viscosity,
+        resistance: match &spec.resistance {
+            None => None,
+            Some(r) => {
+                let metre = crate::case::metres_per_length_unit(case, &format!("{key}.resistance"))?;
+                Some(stiction_interfaces::contact_resistance::ResistanceModel {
+                    resistivity: r.resistivity / metre,
+                    mean_free_path: r.mean_free_path,
+                    film_specific_resistance: r.film_specific_resistance / (metre * metre),
+                })
+            }
+        },
     };
     let (flat, layout) = match &spec.points {
         None => (stiction_interfaces::RigidFlat::over_surface(ctx.mesh, ctx.kin, flat_spec, law), None),

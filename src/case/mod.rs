@@ -3,6 +3,7 @@
 
 pub mod overrides;
 mod validate;
+pub use validate::metres_per_length_unit;
 
 use crate::error::{Result, StictionError};
 use serde::Deserialize;
@@ -243,6 +244,23 @@ pub struct InterfaceSpec {
     pub max_viscous_share: f64,
     /// Discrete points (e.g. asperities) instead of the whole surface; needs a force law.
     pub points: Option<PointsSpec>,
+    /// Electrical contact resistance of a rigid-flat interface (a `contact_resistance` column
+    /// in history.csv); needs `[units] length`.
+    pub resistance: Option<ResistanceSpec>,
+}
+
+/// The metal's electrical data for the contact resistance (the body and the flat are taken to
+/// be the same metal; see `stiction_interfaces::contact_resistance`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ResistanceSpec {
+    /// Bulk resistivity in ohm m (Ru: 7.1e-8).
+    pub resistivity: f64,
+    /// Electron mean free path, in the case's length unit (Ru: 6.59 nm).
+    pub mean_free_path: f64,
+    /// Specific resistance of a film on each spot, in ohm m^2 (default 0: clean metal).
+    #[serde(default)]
+    pub film_specific_resistance: f64,
 }
 
 /// Discrete points on the interface surface: generated, or read from a file.

@@ -156,6 +156,24 @@ fn interfaces(case: &LoadedCase) -> Result<()> {
         if let Some(p) = &f.points {
             points(case, &key("points"), p)?;
         }
+        if let Some(r) = &f.resistance {
+            if f.kind != "rigid-flat" {
+                return Err(
+                    case.error(key("resistance"), "the contact resistance is computed for rigid-flat interfaces only")
+                );
+            }
+            positive(case, &key("resistance.resistivity"), r.resistivity)?;
+            for (k, v) in
+                [("mean_free_path", r.mean_free_path), ("film_specific_resistance", r.film_specific_resistance)]
+            {
+                if !(v.is_finite() && v >= 0.0) {
+                    return Err(
+                        case.error(key(&format!("resistance.{k}")), format!("must be a finite number >= 0, got {v}"))
+                    );
+                }
+            }
+            metres_per_length_unit(case, &key("resistance"))?;
+        }
     }
     Ok(())
 }
@@ -173,4 +191,22 @@ fn points(case: &LoadedCase, key: &str, p: &super::PointsSpec) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The case's length unit in metres, for keys given in SI (the contact resistance's
+/// resistivity).
+pub fn metres_per_length_unit(case: &LoadedCase, key: &str) -> Result<f64> {
+    let unit = case.case.units.as_ref().map(|u| u.length.as_str());
+    match unit {
+        Some("m") => Ok(1.0),
+        Some("mm") => Ok(1e-3),
+        Some("um") | Some("µm") => Ok(1e-6),
+        Some("nm") => Ok(1e-9),
+        Some(other) => Err(case.error(
+            key,
+            format!("needs the case's length unit in metres, but units.length = '{other}' is not one of m, mm, um, nm"),
+        )),
+        None => Err(case
+            .error(key, "needs [units] length = \"m\", \"mm\", \"um\" or \"nm\" to convert the resistivity (ohm m)")),
+    }
 }

@@ -105,6 +105,50 @@ fn hertz_3d_quarter_matches_hertz_and_the_axisymmetric_model() {
     }
 }
 
+/// Electrical contact resistance of the smooth Hertz contact in the diffusive limit (mean free
+/// path 0): Holm's R = rho / (2 a) with Hertz's a = (R d)^(1/2) (Holm, Electric Contacts, 1967;
+/// Johnson 1985). The Ru resistivity 7.1e-8 ohm m is given in SI and the case works in nm, so
+/// this also checks the unit conversion (rho = 71 ohm nm). Tolerance 3.5%: with h_contact = 2 nm
+/// the contact radius is resolved to within a face (measured -2.7% .. -0.1% for d = 0.2 .. 2 nm,
+/// the finite body's larger radius included).
+#[test]
+fn smooth_hertz_contact_resistance_follows_holm() {
+    let (_, summary) = run_case(
+        "cases/validation/hertz-axisym.toml",
+        &[
+            "units={ length = \"nm\", force = \"nN\" }",
+            "interfaces.0.resistance={ resistivity = 7.1e-8, mean_free_path = 0.0 }",
+            "mesh.parameters.h_contact=2.0",
+        ],
+        "hertz-axisym-resistance",
+    );
+    let text = std::fs::read_to_string(summary.output_directory.join("history.csv")).unwrap();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}"));
+    let (ia, ir) = (col("approach"), col("contact_resistance"));
+    let rho = 71.0; // ohm nm
+    let mut rows = 0;
+    for line in text.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let d = v[ia];
+        if d <= 0.0 {
+            assert!(v[ir].is_infinite(), "no contact, no conduction: {}", v[ir]);
+            continue;
+        }
+        let holm = rho / (2.0 * (1000.0 * d).sqrt());
+        println!(
+            "d = {d:.2} nm: R = {:.4} ohm, Holm with Hertz's radius {holm:.4} ({:+.2}%)",
+            v[ir],
+            100.0 * (v[ir] / holm - 1.0)
+        );
+        assert!((v[ir] / holm - 1.0).abs() < 0.035, "d = {d}: {} vs {holm}", v[ir]);
+        rows += 1;
+    }
+    assert_eq!(rows, 10);
+    let at_max = summary.interfaces[0].contact_resistance_at_max_force.unwrap();
+    assert!((at_max / (rho / (2.0 * (2000.0f64).sqrt())) - 1.0).abs() < 0.035);
+}
+
 /// The assembled tangent of a rigid flat with the Lennard-Jones law (surface quadrature, both
 /// attraction and repulsion active) against central differences of the residual.
 #[test]

@@ -110,6 +110,15 @@ fn a_sweep_runs_each_value_in_its_own_folder_with_combined_plots() {
         assert!(dir.join("history.csv").exists() && dir.join("summary.json").exists(), "{}", dir.display());
         let png = std::fs::read(dir.join("force_approach.png")).unwrap();
         assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+        // one load cycle (loading only): cycles.csv holds it with the summary's maximum force
+        let cycles = std::fs::read_to_string(dir.join("cycles.csv")).unwrap();
+        assert_eq!(cycles.lines().count(), 2, "{cycles}");
+    }
+    for s in &summaries {
+        let i = &s.interfaces[0];
+        assert_eq!(i.cycles.len(), 1);
+        assert_eq!(i.cycles[0].max_force, i.max_force);
+        assert!(i.contact_resistance_at_max_force.is_none(), "no [interfaces.resistance] given");
     }
     for f in ["combined_force_approach.png", "combined_area_approach.svg", "sweep.json"] {
         assert!(out.join(f).exists(), "{f}");

@@ -182,6 +182,8 @@ impl Driver<'_> {
             fraction_done: 0.0,
             description: "initial state".into(),
         };
+        // the interfaces' records start from the committed initial state
+        self.tracker = InterfaceTracker::new(self.model, &self.plan.interfaces);
         for o in self.observers.iter_mut() {
             o.committed(self.model, &initial)?;
         }

@@ -2,6 +2,7 @@
 //! viscous share) and their events (contact gained or lost, jumps, limit points), updated from
 //! their typed observables at each committed increment.
 
+use super::cycles::{InterfaceSample, cycles, resistance_hysteresis};
 use super::summary::InterfaceSummary;
 use crate::model::Model;
 use crate::observables::InterfaceObservables;
@@ -42,6 +43,17 @@ pub struct InterfaceTracker {
     summaries: Vec<InterfaceSummary>,
     observed: Vec<InterfaceObservables>,
     had_contact: Vec<bool>,
+    /// Every committed state of each interface with a flat, for cycles and hysteresis.
+    samples: Vec<Vec<InterfaceSample>>,
+}
+
+fn sample(o: &InterfaceObservables) -> Option<InterfaceSample> {
+    Some(InterfaceSample {
+        approach: o.approach?,
+        force: o.force,
+        contact_area: o.contact_area,
+        resistance: o.contact_resistance,
+    })
 }
 
 /// (approach or 0, force, area, n, viscous or 0) of an observable set (0 for no observables).
@@ -64,7 +76,9 @@ impl InterfaceTracker {
             })
             .collect();
         let n = model.contributions.len();
-        Self { summaries, observed: (0..n).map(|k| observe(model, k)).collect(), had_contact: vec![false; n] }
+        let observed: Vec<InterfaceObservables> = (0..n).map(|k| observe(model, k)).collect();
+        let samples = observed.iter().map(|o| sample(o).into_iter().collect()).collect();
+        Self { summaries, observed, had_contact: vec![false; n], samples }
     }
 
     pub fn summaries(&self) -> &[InterfaceSummary] {
@@ -91,6 +105,9 @@ impl InterfaceTracker {
                 events.push(e);
             }
             self.had_contact[k] |= now.n_contact > 0;
+            if let Some(x) = sample(&now) {
+                self.samples[k].push(x);
+            }
             let s = &self.summaries[k];
             let force_scale = s.max_force.max(-s.pull_off_force);
             if until_separated == Some(k)
@@ -129,6 +146,12 @@ impl InterfaceTracker {
             s.contact_area_at_pull_off = now.contact_area;
         }
         s.max_contact_area = s.max_contact_area.max(now.contact_area);
+        if let Some(r) = now.contact_resistance {
+            if now.force >= s.max_force {
+                s.contact_resistance_at_max_force = Some(r);
+            }
+            s.min_contact_resistance = Some(s.min_contact_resistance.map_or(r, |m: f64| m.min(r)));
+        }
         let viscous = now.viscous_dissipation.unwrap_or(0.0);
         s.viscous_dissipation = viscous;
         s.viscous_share_of_work = if s.gross_work_of_flat > 0.0 { viscous / s.gross_work_of_flat } else { 0.0 };
@@ -184,7 +207,11 @@ impl InterfaceTracker {
     /// At the end of the run (pseudo-time `t`): a `viscous_share_exceeded` event and a warning
     /// for each interface whose viscous regularisation dissipated too large a share of the
     /// gross work of the flat.
-    pub fn finish(&self, t: f64) -> (Vec<InterfaceEvent>, Vec<String>) {
+    pub fn finish(&mut self, t: f64) -> (Vec<InterfaceEvent>, Vec<String>) {
+        for (s, samples) in self.summaries.iter_mut().zip(&self.samples) {
+            s.cycles = cycles(samples);
+            s.contact_resistance_at_force = resistance_hysteresis(samples);
+        }
         let (mut events, mut warnings) = (Vec::new(), Vec::new());
         for (i, now) in self.summaries.iter().zip(&self.observed) {
             if i.viscous_dissipation > 0.0 && i.viscous_share_of_work >= i.max_viscous_share {

@@ -4,12 +4,14 @@
 //! output (history.csv, events.csv, the VTK series, summary.json, a progress bar, plots) is one
 //! small observer. A new output is a new observer, not an edit of the loop.
 
+pub mod cycles;
 mod events;
 mod history;
 pub mod interface_tracker;
 pub mod summary;
 mod vtk_series;
 
+pub use cycles::{CycleSummary, CyclesWriter, ResistanceAtForce};
 pub use events::EventsRecorder;
 pub use history::HistoryRecorder;
 pub use interface_tracker::{InterfaceEvent, InterfaceTracker};

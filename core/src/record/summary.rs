@@ -1,6 +1,7 @@
 //! `summary.json`: how the run went and each interface's key numbers; written when the run
 //! starts (status "running") and again when it ends, failed and interrupted runs included.
 
+use super::cycles::{CycleSummary, ResistanceAtForce};
 use super::{CommittedIncrement, Observer};
 use crate::error::Result;
 use crate::model::Model;
@@ -81,6 +82,14 @@ pub struct InterfaceSummary {
     pub viscous_share_of_work: f64,
     /// The share at or above which a warning is issued.
     pub max_viscous_share: f64,
+    /// Electrical contact resistance (ohm) at the maximum force, its smallest value, and the
+    /// first cycle's values at 25, 50 and 75% of its maximum force on loading and unloading (the
+    /// hysteresis); absent where the interface does not model resistance.
+    pub contact_resistance_at_max_force: Option<f64>,
+    pub min_contact_resistance: Option<f64>,
+    pub contact_resistance_at_force: Vec<ResistanceAtForce>,
+    /// Each load cycle's key numbers (interfaces with a flat), as in cycles.csv.
+    pub cycles: Vec<CycleSummary>,
 }
 
 /// Writes `summary.json` (atomically) when the run ends.
