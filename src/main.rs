@@ -320,6 +320,9 @@ fn main() -> ExitCode {
                 m.pattern().nnz(),
                 built.mesh_path.display()
             );
+            for w in m.contributions.iter().flat_map(|c| c.warnings()) {
+                eprintln!("warning: {w}");
+            }
             Ok(())
         })(),
         Command::Calibrate { table, output, loading_order, unloading_order, work_of_adhesion } => {

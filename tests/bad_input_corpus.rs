@@ -86,7 +86,7 @@ const MESHES: &[Broken] = &[
     bad(&["check", ROUGH, "--set", "mesh.parameters.R=-1.0"], "key 'mesh.parameters.R': -1 is outside the range"),
     bad(
         &["check", ROUGH, "--set", "mesh.parameters.hh=5.0"],
-        "declares no parameter 'hh' in a DefineConstant (it declares: R, h_contact, r_fine, growth, h_far)",
+        "declares no parameter 'hh' in a DefineConstant (it declares: R, h_contact, r_fine, growth, h_far, layer)",
     ),
     bad(&["check", LAME, "--set", "mesh.parameters.h=-0.2"], "key 'mesh.parameters.h'"),
     bad(&["check", HERTZ, "--set", "mesh.parameters.R=0.0"], "key 'mesh.parameters.R'"),

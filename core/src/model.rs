@@ -223,6 +223,11 @@ pub trait Contribution: Send {
     fn observables(&self) -> Option<crate::observables::InterfaceObservables> {
         None
     }
+    /// Warnings about how the contribution is set up (e.g. a mesh too coarse for it); the run
+    /// reports them on stderr and in summary.json.
+    fn warnings(&self) -> Vec<String> {
+        Vec::new()
+    }
     /// Points with fields at the committed state, written as VTK vertices (e.g. interface
     /// integration points with gap and traction).
     fn point_output(&self) -> Option<(Vec<[f64; 3]>, Vec<crate::output::vtk::Field>)> {
@@ -461,7 +466,9 @@ impl Model {
             let mut add = |r: usize, c: usize, v: f64| {
                 let (fr, fc) = (free_index[r], free_index[c]);
                 if fr != usize::MAX && fc != usize::MAX {
-                    if let Some(s) = pattern.slot(fr, fc) {
+                    let slot = pattern.slot(fr, fc);
+                    debug_assert!(slot.is_some(), "a contribution couples free dofs {fr} and {fc} outside the pattern");
+                    if let Some(s) = slot {
                         values[s] += v;
                     }
                 }
@@ -521,6 +528,23 @@ impl Model {
             }
         }
         r
+    }
+
+    /// The largest value of the material output `name` (e.g. "equivalent_plastic_strain") over
+    /// the integration points at the committed state; None if no material gives it.
+    pub fn max_material_output(&self, name: &str) -> Option<f64> {
+        let mut largest: Option<f64> = None;
+        for set in &self.sets {
+            let names = set.material.output_names();
+            let Some(k) = names.iter().position(|n| *n == name) else { continue };
+            let ns = set.material.n_state();
+            let mut out = vec![0.0; names.len()];
+            for state in set.state_committed.chunks_exact(ns.max(1)).take(set.n_cells() * set.kernel.n_points()) {
+                set.material.outputs(state, &mut out);
+                largest = Some(largest.map_or(out[k], |m| m.max(out[k])));
+            }
+        }
+        largest
     }
 
     /// Total plastic (or other material) dissipation at the committed state:

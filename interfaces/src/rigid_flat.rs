@@ -4,7 +4,9 @@
 //! The plane has unit normal n pointing from the flat toward the body and sits at
 //! s(t) = s0 + approach(t) along n. A point with reference position x on the body and offset h
 //! toward the flat (an asperity's height; 0 for surface points) has the gap
-//! g = x . n - h + u(x) . n - s(t), with u interpolated from its face's nodes. s0 is a reference
+//! g = x . n - h + u(x) . n - s(t), with u interpolated from its face's nodes (for a discrete
+//! point with a footprint: u averaged over the disc of its footprint, N_a below then being the
+//! footprint's node weights c_a, see [`crate::footprint`]). s0 is a reference
 //! level minus `initial_gap`: over a surface, the lowest point of the surface (approach 0 is
 //! first touch); at discrete points, the lowest point of the surface minus the mean height
 //! (approach 0: the flat at asperity height above the undeformed pole, as in the reference
@@ -24,6 +26,7 @@
 //! accumulated and reported so it can be kept small.
 
 use crate::contact_resistance::{ContactSpot, ResistanceModel};
+use crate::footprint::locate_footprint;
 use crate::point_law::{evaluate_point, initial_states};
 use crate::surface_locator::SurfaceLocator;
 use std::sync::Arc;
@@ -104,6 +107,15 @@ pub struct RigidFlat {
     trial_time: f64,
     resistance: Option<ResistanceModel>,
     resistance_committed: f64,
+    footprint: Option<FootprintResolution>,
+}
+
+/// How finely the mesh resolves the points' footprints.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FootprintResolution {
+    pub footprint_area: f64,
+    /// Mean area of the surface faces the footprints touch.
+    pub mean_face_area: f64,
 }
 
 fn unit_normal(spec: &RigidFlatSpec, kinematics: Kinematics) -> Result<[f64; 3], CoreError> {
@@ -190,7 +202,9 @@ impl RigidFlat {
     }
 
     /// A flat against discrete points placed on a surface group (3D), with a force law.
-    /// `source` names where the points came from, for messages.
+    /// `source` names where the points came from, for messages. `footprint_area` > 0 spreads
+    /// each point's force over a disc of that area and averages the displacement over it
+    /// (see [`crate::footprint`]); 0 applies it at the point.
     pub fn at_points(
         mesh: &Mesh,
         kinematics: Kinematics,
@@ -198,6 +212,7 @@ impl RigidFlat {
         law: Arc<dyn InterfaceLaw>,
         discrete: &[DiscretePoint],
         source: &str,
+        footprint_area: f64,
     ) -> Result<Self, CoreError> {
         if law.kind() != LawKind::ForcePerPoint {
             return Err(CoreError::Invalid(format!(
@@ -229,21 +244,23 @@ impl RigidFlat {
         let (e1, e2) = plane_basis(normal);
         let pole_level: f64 = (0..3).map(|k| pole[k] * normal[k]).sum();
         let mut points = Vec::with_capacity(discrete.len());
+        let mut face_areas = Vec::new();
         for (i, d) in discrete.iter().enumerate() {
             // start the ray well on the flat's side of the body
             let start: [f64; 3] = std::array::from_fn(|k| {
                 pole[k] + d.in_plane[0] * e1[k] + d.in_plane[1] * e2[k] - 10.0 * normal[k] * (1.0 + pole_level.abs())
             });
-            let hit = locator.locate(start).ok_or_else(|| {
+            let outside = || {
                 CoreError::Invalid(format!(
-                    "interface '{}': point {} of {source} at in-plane ({:.4}, {:.4}) is outside surface '{}'",
+                    "interface '{}': point {} of {source} at in-plane ({:.4}, {:.4}){} is outside surface '{}'",
                     spec.name,
                     i + 1,
                     d.in_plane[0],
                     d.in_plane[1],
+                    if footprint_area > 0.0 { " or part of its footprint" } else { "" },
                     spec.surface
                 ))
-            })?;
+            };
             if !(d.height >= 0.0 && d.height.is_finite()) {
                 return Err(CoreError::Invalid(format!(
                     "interface '{}': point {} of {source} has height {}",
@@ -252,17 +269,30 @@ impl RigidFlat {
                     d.height
                 )));
             }
-            let level = (0..3).map(|k| hit.position[k] * normal[k]).sum::<f64>() - d.height;
-            points.push(InterfacePoint {
-                nodes: hit.nodes,
-                shape: hit.shape,
-                weight: 1.0,
-                level,
-                position: hit.position,
-            });
+            let point = if footprint_area > 0.0 {
+                let f = locate_footprint(&locator, start, (e1, e2), normal, footprint_area).ok_or_else(outside)?;
+                face_areas.push(f.face_area);
+                InterfacePoint {
+                    nodes: f.nodes,
+                    shape: f.weights,
+                    weight: 1.0,
+                    level: f.level - d.height,
+                    position: f.center.position,
+                }
+            } else {
+                let hit = locator.locate(start).ok_or_else(outside)?;
+                let level = (0..3).map(|k| hit.position[k] * normal[k]).sum::<f64>() - d.height;
+                InterfacePoint { nodes: hit.nodes, shape: hit.shape, weight: 1.0, level, position: hit.position }
+            };
+            points.push(point);
         }
         let mean_height = discrete.iter().map(|d| d.height).sum::<f64>() / discrete.len() as f64;
-        Self::assemble_new(spec, kinematics, law, normal, points, pole_level - mean_height)
+        let mut flat = Self::assemble_new(spec, kinematics, law, normal, points, pole_level - mean_height)?;
+        if footprint_area > 0.0 {
+            let mean_face_area = face_areas.iter().sum::<f64>() / face_areas.len() as f64;
+            flat.footprint = Some(FootprintResolution { footprint_area, mean_face_area });
+        }
+        Ok(flat)
     }
 
     fn assemble_new(
@@ -305,6 +335,7 @@ impl RigidFlat {
             trial_time: 0.0,
             resistance: spec.resistance,
             resistance_committed: f64::INFINITY,
+            footprint: None,
         })
     }
 
@@ -452,6 +483,27 @@ impl Contribution for RigidFlat {
 
     fn rollback(&mut self) {
         self.state_trial.copy_from_slice(&self.state_committed);
+    }
+
+    /// A footprint spans several faces: its nodes are coupled beyond any one element.
+    fn coupled_nodes(&self) -> Vec<Vec<usize>> {
+        if self.footprint.is_none() {
+            return Vec::new();
+        }
+        self.points.iter().map(|p| p.nodes.clone()).collect()
+    }
+
+    fn warnings(&self) -> Vec<String> {
+        match self.footprint {
+            Some(f) if f.mean_face_area > f.footprint_area => vec![format!(
+                "interface '{}': the surface faces under the points (mean area {:.3}) are {:.1} times the footprint ({:.3}): the footprint is not resolved and acts close to a point force spread over a face; refine the contact mesh to faces no larger than the footprint for a mesh-converged continuum response",
+                self.name,
+                f.mean_face_area,
+                f.mean_face_area / f.footprint_area,
+                f.footprint_area
+            )],
+            _ => Vec::new(),
+        }
     }
 
     fn observables(&self) -> Option<InterfaceObservables> {

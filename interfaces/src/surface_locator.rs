@@ -47,6 +47,11 @@ impl<'a> SurfaceLocator<'a> {
         Ok(Self { mesh, faces, direction })
     }
 
+    /// Coordinates of node `n` of the mesh.
+    pub fn node(&self, n: usize) -> [f64; 3] {
+        self.mesh.nodes[n]
+    }
+
     /// The first face hit by the ray through `p` along the direction (the face nearest the
     /// flat); `None` when the ray misses the surface.
     pub fn locate(&self, p: [f64; 3]) -> Option<SurfacePoint> {

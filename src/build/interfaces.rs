@@ -203,7 +203,15 @@ fn rigid_flat(
         None => (stiction_interfaces::RigidFlat::over_surface(ctx.mesh, ctx.kin, flat_spec, law), None),
         Some(points) => {
             let (list, source) = discrete_points(case, &format!("{key}.points"), points)?;
-            let flat = stiction_interfaces::RigidFlat::at_points(ctx.mesh, ctx.kin, flat_spec, law, &list, &source);
+            let flat = stiction_interfaces::RigidFlat::at_points(
+                ctx.mesh,
+                ctx.kin,
+                flat_spec,
+                law,
+                &list,
+                &source,
+                points.footprint_area,
+            );
             (flat, Some(list))
         }
     };

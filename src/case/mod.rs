@@ -285,6 +285,11 @@ pub struct PointsSpec {
     /// Random seed (generator, default 1).
     #[serde(default = "default_seed")]
     pub seed: u64,
+    /// Area of each point's footprint (an asperity's base): its force acts as a uniform
+    /// traction over a disc of this area and its distance is the mean over the disc (default 0:
+    /// a point force, as for springs).
+    #[serde(default)]
+    pub footprint_area: f64,
 }
 
 fn default_seed() -> u64 {

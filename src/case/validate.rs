@@ -185,7 +185,7 @@ fn points(case: &LoadedCase, key: &str, p: &super::PointsSpec) -> Result<()> {
             positive(case, &format!("{key}.{k}"), v)?;
         }
     }
-    for (k, v) in [("min_spacing", p.min_spacing), ("height_std", p.height_std)] {
+    for (k, v) in [("min_spacing", p.min_spacing), ("height_std", p.height_std), ("footprint_area", p.footprint_area)] {
         if !(v.is_finite() && v >= 0.0) {
             return Err(case.error(format!("{key}.{k}"), format!("must be a finite number >= 0, got {v}")));
         }

@@ -113,6 +113,7 @@ fn initial_summary(model: &Model, plan: &RunPlan, factor_nnz: usize) -> RunSumma
         nnz: model.pattern().nnz(),
         factor_nnz,
         output_directory: plan.output_directory.clone(),
+        warnings: model.contributions.iter().flat_map(|c| c.warnings()).collect(),
         ..Default::default()
     }
 }
@@ -391,6 +392,7 @@ impl Driver<'_> {
         let s = &mut self.summary;
         s.final_time = self.t;
         s.plastic_dissipation = self.model.dissipation();
+        s.max_equivalent_plastic_strain = self.model.max_material_output("equivalent_plastic_strain");
         s.wall_seconds = wall.elapsed().as_secs_f64();
         (s.status, s.message) = match ending {
             None => ("completed".into(), None),
@@ -403,7 +405,7 @@ impl Driver<'_> {
                 )),
             ),
         };
-        s.warnings = warnings;
+        s.warnings.extend(warnings);
         for ((law, interface, message), (times, point)) in &self.law_failures {
             s.warnings.push(format!(
                 "law '{law}' on interface '{interface}' failed {times} time(s), first at point {point}: {message}"

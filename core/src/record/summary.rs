@@ -38,6 +38,9 @@ pub struct RunSummary {
     pub factorization_seconds: f64,
     pub solve_seconds: f64,
     pub plastic_dissipation: f64,
+    /// The largest equivalent plastic strain of any integration point at the end (None without
+    /// a plastic material).
+    pub max_equivalent_plastic_strain: Option<f64>,
     pub output_directory: PathBuf,
     /// Warnings about the results (e.g. a viscous share above its limit).
     pub warnings: Vec<String>,
