@@ -16,16 +16,17 @@
 
 use crate::surface_locator::{SurfaceLocator, SurfacePoint};
 use std::collections::BTreeMap;
+use stiction_core::quadrature::gauss_legendre;
 
 /// Sample points (in-plane offsets from the centre) and weights (sum 1) of a disc of radius
 /// `radius` with `rings` Gauss rings of `6 * rings` (at least 8) angles each.
 pub fn disc_rule(radius: f64, rings: usize) -> Vec<([f64; 2], f64)> {
-    let (t, w) = gauss_legendre(rings);
+    let gauss = gauss_legendre(rings);
     let n_angles = (6 * rings).max(8);
     let mut out = Vec::with_capacity(rings * n_angles);
-    for (k, (tk, wk)) in t.iter().zip(&w).enumerate() {
+    for (k, (tk, wk)) in gauss.points.iter().zip(&gauss.weights).enumerate() {
         // r in [0, R]: r = R (1 + t) / 2, dr = R / 2 dt; area weight r dr dtheta / (pi R^2)
-        let r = 0.5 * radius * (1.0 + tk);
+        let r = 0.5 * radius * (1.0 + tk[0]);
         let radial = wk * 0.5 * radius * r / (std::f64::consts::PI * radius * radius);
         for m in 0..n_angles {
             // stagger alternate rings so the samples do not line up radially
@@ -34,35 +35,6 @@ pub fn disc_rule(radius: f64, rings: usize) -> Vec<([f64; 2], f64)> {
         }
     }
     out
-}
-
-/// Gauss-Legendre points and weights on [-1, 1] (Newton iteration on P_n; n >= 1).
-fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
-    let (mut points, mut weights) = (Vec::with_capacity(n), Vec::with_capacity(n));
-    for i in 0..n {
-        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-        let mut derivative = 1.0;
-        for _ in 0..100 {
-            // P_n(x) and P_n'(x) by the three-term recurrence
-            let (mut p0, mut p1) = (1.0, x);
-            for k in 2..=n {
-                let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                p0 = p1;
-                p1 = p2;
-            }
-            let pn = if n == 1 { x } else { p1 };
-            let pn_1 = if n == 1 { 1.0 } else { p0 };
-            derivative = n as f64 * (x * pn - pn_1) / (x * x - 1.0);
-            let dx = pn / derivative;
-            x -= dx;
-            if dx.abs() < 1e-15 {
-                break;
-            }
-        }
-        points.push(x);
-        weights.push(2.0 / ((1.0 - x * x) * derivative * derivative));
-    }
-    (points, weights)
 }
 
 /// A footprint on the surface: the nodes and their weights c_a, the reference level of its
