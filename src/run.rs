@@ -40,6 +40,8 @@ pub fn output_directory(case: &LoadedCase, options: &RunOptions) -> PathBuf {
 
 /// Builds and runs a case.
 pub fn run(case: &LoadedCase, options: &RunOptions) -> Result<RunSummary> {
+    // refuse an occupied output folder before the (possibly long) build; replace it only after
+    crate::output_folder::check(&output_directory(case, options), options.overwrite)?;
     let mut built = build(case)?;
     run_model(case, &mut built, options)
 }
