@@ -23,6 +23,13 @@ pub enum StictionError {
         "interrupted at t = {time:.6}; every converged step so far is in '{out}' (summary.json says \"interrupted\")"
     )]
     Interrupted { time: f64, out: PathBuf },
+    #[error(
+        "ensemble interrupted with {completed} of {members} members complete in '{out}'; run the same command again \
+         to resume (completed members are skipped)"
+    )]
+    EnsembleInterrupted { completed: usize, members: usize, out: PathBuf },
+    #[error("no member of the ensemble completed ({members} members; see the errors in '{out}/ensemble.json')")]
+    EnsembleFailed { members: usize, out: PathBuf },
 }
 
 impl StictionError {
@@ -30,7 +37,8 @@ impl StictionError {
     pub fn exit_code(&self) -> i32 {
         match self {
             StictionError::RunFailed { .. } => 1,
-            StictionError::Interrupted { .. } => 130,
+            StictionError::Interrupted { .. } | StictionError::EnsembleInterrupted { .. } => 130,
+            StictionError::EnsembleFailed { .. } => 1,
             StictionError::Core(stiction_core::CoreError::Write { .. }) => 1,
             _ => 2,
         }

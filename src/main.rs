@@ -16,26 +16,52 @@ struct Cli {
     command: Command,
 }
 
+/// A case file, where its output goes, and overrides of its keys.
+#[derive(clap::Args)]
+struct CaseInput {
+    /// The case file (TOML).
+    case: PathBuf,
+    /// Output directory (default: the case's output.directory, else out/<name>).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Override any case key, e.g. --set steps.0.end_time=2 --set materials.ru.yield_stress=3.42
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    sets: Vec<String>,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Solve a case: writes history.csv (one row per converged increment, flushed as it goes),
     /// VTK files (<name>_NNNNN.vtu + <name>.pvd for ParaView) and summary.json.
     #[command(after_help = stiction::case::defaults_help())]
     Run {
-        /// The case file (TOML).
-        case: PathBuf,
-        /// Output directory (default: the case's output.directory, else out/<name>).
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Override any case key, e.g. --set steps.0.end_time=2 --set materials.ru.yield_stress=3.42
-        #[arg(long = "set", value_name = "KEY=VALUE")]
-        sets: Vec<String>,
+        #[command(flatten)]
+        input: CaseInput,
         /// Never show progress, even on a terminal.
         #[arg(long)]
         quiet: bool,
         /// Replace an earlier run in the output folder (a non-empty folder is refused otherwise).
         #[arg(long)]
         overwrite: bool,
+    },
+    /// Run the N members of a case's [ensemble] (each in DIR/member-NNN/) and aggregate them:
+    /// mean, standard deviation and 95% confidence interval of every summary quantity
+    /// (ensemble.json, ensemble.csv), mean force and area curves with bands, and the interval's
+    /// width against N (plots). Running it again resumes, skipping completed members. Under
+    /// `mpirun -n P` (a build with the cargo feature `mpi`) the members spread over the ranks.
+    Ensemble {
+        /// The case (its [ensemble] table), the output folder and overrides for every member.
+        #[command(flatten)]
+        input: CaseInput,
+        /// Threads per member (default: the case's ensemble.threads_per_member; 0 = automatic).
+        #[arg(long)]
+        threads_per_member: Option<usize>,
+        /// Members run at once on this machine (default: ensemble.concurrent_members; 0 = automatic).
+        #[arg(long)]
+        concurrent_members: Option<usize>,
+        /// Report failed members only.
+        #[arg(long)]
+        quiet: bool,
     },
     /// Validate a case (schema, mesh, groups, materials, boundary conditions) without solving.
     Check {
@@ -285,10 +311,33 @@ fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
     flag
 }
 
+/// `stiction ensemble`: over MPI ranks when an MPI launcher started this program (a build with
+/// the `mpi` feature), else on this machine; rank 0 (or the only process) prints the table.
+fn run_ensemble(
+    case: &std::path::Path,
+    sets: &[String],
+    options: &stiction::ensemble::EnsembleOptions,
+) -> Result<(), stiction::StictionError> {
+    #[cfg(feature = "mpi")]
+    let aggregate = if stiction::ensemble::mpi::launched_under_mpi() {
+        stiction::ensemble::mpi::run_ensemble_mpi(case, sets, options)?
+    } else {
+        Some(stiction::ensemble::run_ensemble(case, sets, options)?)
+    };
+    #[cfg(not(feature = "mpi"))]
+    let aggregate = Some(stiction::ensemble::run_ensemble(case, sets, options)?);
+    if let Some(a) = aggregate {
+        for line in stiction::report::ensemble_lines(&a) {
+            println!("{line}");
+        }
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run { case, out, sets, quiet, overwrite } => (|| {
+        Command::Run { input: CaseInput { case, out, sets }, quiet, overwrite } => (|| {
             let options = RunOptions {
                 out,
                 progress: !quiet && std::io::stderr().is_terminal(),
@@ -306,6 +355,16 @@ fn main() -> ExitCode {
             }
             Ok(())
         })(),
+        Command::Ensemble { input: CaseInput { case, out, sets }, threads_per_member, concurrent_members, quiet } => {
+            let options = stiction::ensemble::EnsembleOptions {
+                out,
+                threads_per_member,
+                concurrent_members,
+                interrupt: Some(interrupt_on_ctrl_c()),
+                quiet,
+            };
+            run_ensemble(&case, &sets, &options)
+        }
         Command::Check { case, sets } => (|| {
             let loaded = case::load(&case, &sets)?;
             let built = stiction::build::build(&loaded)?;

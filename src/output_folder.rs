@@ -1,12 +1,13 @@
 //! The output folder of a run: never overwritten silently. A run goes into a new or empty
 //! folder; with `--overwrite` it may replace an earlier Stiction run (a folder holding
-//! `summary.json`, `history.csv` or a sweep's `sweep.json`), never a folder of other files.
+//! `summary.json`, `history.csv`, a sweep's `sweep.json` or an ensemble member's `member.json`),
+//! never a folder of other files.
 
 use crate::error::{Result, StictionError};
 use std::path::Path;
 
 /// Files whose presence marks a folder as written by an earlier run of Stiction.
-const RUN_MARKERS: [&str; 3] = ["summary.json", "history.csv", "sweep.json"];
+const RUN_MARKERS: [&str; 4] = ["summary.json", "history.csv", "sweep.json", "member.json"];
 
 /// Whether a run may write into `out` (see the module documentation), without touching it:
 /// Ok(true) when `out` holds an earlier run that `overwrite` allows to replace.

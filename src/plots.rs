@@ -47,7 +47,7 @@ type Chart<'a, DB> =
     ChartContext<'a, DB, Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>>;
 
 /// Draws the series labels in the upper left corner and writes the picture.
-fn legend_and_present<'a, DB: DrawingBackend + 'a>(
+pub(crate) fn legend_and_present<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     root: &DrawingArea<DB, plotters::coord::Shift>,
 ) -> Result<(), String>
@@ -64,6 +64,65 @@ where
     root.present().map_err(|e| e.to_string())
 }
 
+/// A chart on `root` whose axes span the points (x, y_low, y_high) with a 5% margin, labelled.
+pub(crate) fn padded_chart<'a, DB: DrawingBackend + 'a>(
+    root: &'a DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    (x_label, y_label): (&str, &str),
+    points: impl Iterator<Item = (f64, f64, f64)>,
+) -> Result<Chart<'a, DB>, String>
+where
+    DB::ErrorType: 'static,
+{
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for (x, lo, hi) in points {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(lo), y1.max(hi));
+    }
+    let pad = |a: f64, b: f64| 0.05 * (b - a).abs().max(1e-12);
+    let (px, py) = (pad(x0, x1), pad(y0, y1));
+    let mut chart = ChartBuilder::on(root)
+        .caption(title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((x0 - px)..(x1 + px), (y0 - py)..(y1 + py))
+        .map_err(|e| e.to_string())?;
+    chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw().map_err(|e| e.to_string())?;
+    Ok(chart)
+}
+
+/// Lines with a marker at each point, one colour per series, on fixed axis ranges.
+pub(crate) fn draw_marked_lines<DB: DrawingBackend>(
+    root: DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    (x_label, y_label): (&str, &str),
+    (x_range, y_range): (std::ops::Range<f64>, std::ops::Range<f64>),
+    series: &[(String, Vec<(f64, f64)>)],
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x_range, y_range)
+        .map_err(|e| e.to_string())?;
+    chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw().map_err(|e| e.to_string())?;
+    for (i, (label, points)) in series.iter().enumerate() {
+        let color = Palette99::pick(i).to_rgba();
+        chart
+            .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+            .map_err(|e| e.to_string())?
+            .label(label.as_str())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+        chart.draw_series(points.iter().map(|p| Circle::new(*p, 4, color.filled()))).map_err(|e| e.to_string())?;
+    }
+    legend_and_present(&mut chart, &root)
+}
+
 fn draw<DB: DrawingBackend>(
     root: DrawingArea<DB, plotters::coord::Shift>,
     title: &str,
@@ -78,23 +137,7 @@ where
     if all.is_empty() {
         return Ok(());
     }
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for (x, y) in &all {
-        x0 = x0.min(*x);
-        x1 = x1.max(*x);
-        y0 = y0.min(*y);
-        y1 = y1.max(*y);
-    }
-    let pad = |a: f64, b: f64| 0.05 * (b - a).abs().max(1e-12);
-    let (px, py) = (pad(x0, x1), pad(y0, y1));
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d((x0 - px)..(x1 + px), (y0 - py)..(y1 + py))
-        .map_err(|e| e.to_string())?;
-    chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw().map_err(|e| e.to_string())?;
+    let mut chart = padded_chart(&root, title, (x_label, y_label), all.iter().map(|&(x, y)| (x, y, y)))?;
     for (i, (label, pts)) in curves.iter().enumerate() {
         let color = Palette99::pick(i).to_rgba();
         let mut first = true;
@@ -179,39 +222,12 @@ pub fn plot_cycles(dir: &Path, title: &str, cycles: &[stiction_core::record::Cyc
     }
     let span = series.iter().flat_map(|(_, p)| p.iter().map(|q| q.1.abs())).fold(1.0f64, f64::max) * 1.1;
     let last = cycles.len().max(2) as f64;
-    fn chart<DB: DrawingBackend>(
-        root: DrawingArea<DB, plotters::coord::Shift>,
-        title: &str,
-        (last, span): (f64, f64),
-        series: &[(String, Vec<(f64, f64)>)],
-    ) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 22))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(70)
-            .build_cartesian_2d(0.8..(last + 0.2), -span..span)
-            .map_err(|e| e.to_string())?;
-        chart.configure_mesh().x_desc("cycle").y_desc("change from cycle 1 (%)").draw().map_err(|e| e.to_string())?;
-        for (i, (label, points)) in series.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
-            chart
-                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
-                .map_err(|e| e.to_string())?
-                .label(label.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
-            chart.draw_series(points.iter().map(|p| Circle::new(*p, 4, color.filled()))).map_err(|e| e.to_string())?;
-        }
-        legend_and_present(&mut chart, &root)
-    }
     let png = dir.join("cycles.png");
     let svg = dir.join("cycles.svg");
-    chart(BitMapBackend::new(&png, (900, 600)).into_drawing_area(), title, (last, span), &series)?;
-    chart(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), title, (last, span), &series)
+    let axes = ("cycle", "change from cycle 1 (%)");
+    let ranges = (0.8..(last + 0.2), -span..span);
+    draw_marked_lines(BitMapBackend::new(&png, (900, 600)).into_drawing_area(), title, axes, ranges.clone(), &series)?;
+    draw_marked_lines(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), title, axes, ranges, &series)
 }
 
 type Branch = (String, Vec<(f64, f64, f64)>, Vec<f64>, Vec<f64>, (f64, f64));

@@ -103,7 +103,10 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
     };
     let mut linear = FaerCholesky::analyse_with_precision(built.model.pattern(), ordering, precision)?;
     let mut nonlinear: Box<dyn NonlinearSolver> = match case.case.solver.method {
-        MethodSpec::QuasiNewton => Box::new(QuasiNewtonSolver::new(built.newton.clone())),
+        MethodSpec::QuasiNewton => match case.case.solver.refactorization_cost_ratio {
+            r if r > 0.0 => Box::new(QuasiNewtonSolver::with_cost_ratio(built.newton.clone(), r)),
+            _ => Box::new(QuasiNewtonSolver::new(built.newton.clone())),
+        },
         MethodSpec::Newton => Box::new(NewtonSolver { settings: built.newton.clone() }),
     };
     let summary = run_steps(&mut built.model, &plan, &mut linear, nonlinear.as_mut(), &mut observers)?;

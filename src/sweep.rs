@@ -10,6 +10,12 @@ use stiction_core::output::write_atomically;
 /// `<out>/<label>=<value>/`; the combined plots and `sweep.json` go to `<out>/`.
 pub fn run_sweep(path: &Path, sets: &[String], options: &RunOptions) -> Result<Vec<RunSummary>> {
     let base = crate::case::load(path, sets)?;
+    if let Some(e) = &base.case.ensemble {
+        eprintln!(
+            "note: `stiction run` runs the case as written, once; `stiction ensemble` runs its {} members",
+            e.members
+        );
+    }
     let Some(sweep) = base.case.sweep.clone() else {
         return Ok(vec![run(&base, options)?]);
     };

@@ -1,8 +1,11 @@
 //! The case file: a TOML description of a problem. Unknown keys are rejected with their path;
 //! every default is stated here and in `stiction run --help`.
 
+mod base;
+pub mod ensemble_spec;
 pub mod overrides;
 mod validate;
+pub use ensemble_spec::{EnsembleSpec, VarySpec};
 pub use validate::metres_per_length_unit;
 
 use crate::error::{Result, StictionError};
@@ -49,6 +52,9 @@ pub struct Case {
     /// Run the case once per value of one key (e.g. several maximum approaches); each run gets
     /// its own folder and the histories a combined plot.
     pub sweep: Option<SweepSpec>,
+    /// N realizations of the case with some keys varied (`stiction ensemble`); `stiction run`
+    /// runs the case as written, once.
+    pub ensemble: Option<EnsembleSpec>,
 }
 
 /// The units of a case's numbers, e.g. length = "nm", force = "nN" (the Ru cases).
@@ -364,6 +370,13 @@ pub struct SolverSpec {
     /// on the node graph) or "amd" (approximate minimum degree).
     #[serde(default)]
     pub ordering: OrderingSpec,
+    /// The quasi-Newton solver refactorizes when the iterations it expects still to need cost
+    /// more than a refactorization; with 0 (default) it compares measured times, with a number
+    /// it takes a refactorization (tangent assembly and numeric factorization) to cost that many
+    /// quasi-Newton iterations (residual assembly and solve), so its choices depend on the
+    /// residuals only and a run is reproducible to the last digit for a given thread count.
+    #[serde(default)]
+    pub refactorization_cost_ratio: f64,
     /// Consecutive cuts after which arc-length continuation takes over (default 2).
     #[serde(default = "default_arc_length_after_cuts")]
     pub arc_length_after_cuts: usize,
@@ -462,9 +475,11 @@ pub fn defaults_help() -> String {
          max_increment = step, output_every = 1; solver.max_iterations = {}, tol_residual = {:e}, \
          tol_displacement = {:e}, line_search = {}, threads = 0 (all cores), cut_factor = {}, \
          growth_factor = {}, continuation = \"none\" (or \"arc-length\"), arc_length_after_cuts = {}, \
-         method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"); \
+         method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"), \
+         refactorization_cost_ratio = 0 (measured times); \
          interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
-         output.directory = out/<name>, output.vtk = true.",
+         output.directory = out/<name>, output.vtk = true; ensemble.seed = 1, threads_per_member = 0 (auto), \
+         concurrent_members = 0 (auto).",
         n.max_iterations,
         n.tol_residual,
         n.tol_displacement,
@@ -514,19 +529,25 @@ impl LoadedCase {
 /// numbers (the same checks for `stiction check` and `stiction run`).
 pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase> {
     let bad = |message: String| StictionError::Case { path: path.to_path_buf(), message };
-    let text = std::fs::read_to_string(path).map_err(|e| bad(format!("cannot read it: {e}")))?;
-    let case: Case = if sets.is_empty() {
+    let (text, merged) = base::read(path)?;
+    let case: Case = if sets.is_empty() && merged.is_none() {
+        // parsed from the text, so errors keep their line numbers
         toml::from_str(&text).map_err(|e| bad(e.to_string()))?
     } else {
-        let mut value: toml::Value = toml::from_str(&text).map_err(|e| bad(e.to_string()))?;
+        let mut value = match merged {
+            Some(v) => v,
+            None => toml::from_str(&text).map_err(|e| bad(e.to_string()))?,
+        };
         for set in sets {
             overrides::apply(&mut value, set).map_err(|m| bad(format!("--set {set}: {m}")))?;
         }
-        Case::deserialize(value).map_err(|e| bad(format!("{e} (after --set overrides)")))?
+        let after = if sets.is_empty() { " (merged over its base)" } else { " (after --set overrides)" };
+        Case::deserialize(value).map_err(|e| bad(format!("{e}{after}")))?
     };
     let name =
         case.name.clone().unwrap_or_else(|| path.file_stem().and_then(|s| s.to_str()).unwrap_or("case").to_string());
     let loaded = LoadedCase { case, path: path.to_path_buf(), name };
     validate::validate(&loaded)?;
+    ensemble_spec::validate(&loaded)?;
     Ok(loaded)
 }

@@ -82,6 +82,12 @@ fn solver(case: &LoadedCase) -> Result<()> {
     if s.arc_length_after_cuts == 0 {
         return Err(case.error("solver.arc_length_after_cuts", "must be at least 1"));
     }
+    if !(s.refactorization_cost_ratio >= 0.0 && s.refactorization_cost_ratio.is_finite()) {
+        return Err(case.error(
+            "solver.refactorization_cost_ratio",
+            format!("must be 0 (measured costs) or a finite ratio > 0, got {}", s.refactorization_cost_ratio),
+        ));
+    }
     Ok(())
 }
 

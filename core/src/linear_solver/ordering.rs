@@ -63,9 +63,13 @@ pub fn nested_dissection(pattern: &SparsityPattern) -> Result<(Vec<usize>, Vec<u
     i32::try_from(adjncy.len()).map_err(|_| too_large())?;
     let mut perm = vec![0i32; n_groups];
     let mut iperm = vec![0i32; n_groups];
+    // METIS keeps its random number generator in global state (GKlib), so two calls at once (an
+    // ensemble's members in one process) would race on it and order differently: one at a time.
+    let _one_at_a_time = METIS_LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     // SAFETY: METIS reads nvtxs, xadj (nvtxs + 1 entries), adjncy (xadj[nvtxs] entries) and
     // vwgt (nvtxs entries), all owned here and alive for the call, and writes nvtxs entries
-    // to perm and iperm; a null options pointer selects METIS's defaults.
+    // to perm and iperm; a null options pointer selects METIS's defaults. The lock above keeps
+    // calls from running concurrently.
     let status = unsafe {
         metis_sys::METIS_NodeND(
             &mut nvtxs,
@@ -91,6 +95,9 @@ pub fn nested_dissection(pattern: &SparsityPattern) -> Result<(Vec<usize>, Vec<u
     }
     Ok((forward, inverse))
 }
+
+/// Serializes the calls into METIS (see [`nested_dissection`]).
+static METIS_LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 #[cfg(test)]
 mod tests {
