@@ -36,11 +36,14 @@ pub fn force(value: f64, unit: &str) -> String {
 
 /// The lines printed after a run.
 pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
-    let arc = if summary.arc_length_increments > 0 {
+    let mut arc = if summary.arc_length_increments > 0 {
         format!("; {} by arc length through {} limit points", summary.arc_length_increments, summary.limit_points)
     } else {
         String::new()
     };
+    if summary.snaps > 0 {
+        arc.push_str(&format!("; {} snapped to a stable state", summary.snaps));
+    }
     let mut lines = vec![format!(
         "{}: {} increments ({} cut{arc}), {} Newton iterations, {} factorizations, {} s; {} free dofs; output in {}",
         summary.case,

@@ -1,12 +1,14 @@
 //! Nonlinear solvers: they drive a [`NonlinearProblem`] to equilibrium at a given pseudo-time
 //! with a [`LinearSolver`], and know nothing of steps, outputs or the case. Full Newton is
 //! [`NewtonSolver`]; [`arc_length`] solves one increment on a constraint in (u, t) for path
-//! following. A quasi-Newton or Krylov-on-a-stale-factor strategy is a new [`NonlinearSolver`].
+//! following; [`settle`] settles on a stable equilibrium where the path has no nearby
+//! one (a snap). A quasi-Newton or Krylov-on-a-stale-factor strategy is a new [`NonlinearSolver`].
 
 pub mod arc_length;
 pub mod convergence;
 pub mod newton;
 pub mod quasi_newton;
+pub mod settle;
 
 pub use convergence::{NewtonSettings, ReferenceScales};
 pub use newton::{NewtonSolver, solve_increment};

@@ -179,3 +179,53 @@ fn arc_length_follows_the_snap_back_of_a_softening_chain_under_end_displacement(
     assert_eq!(turns(&states), 2, "turns {} along {states:?}", turns(&states));
     assert!(states.last().unwrap().1 - states.last().unwrap().0 > 4.0, "softening spring not opened past its tail");
 }
+
+/// Double well: energy u^4/4 - u^2/2 - t u, r = u^3 - u - t, k = 3 u^2 - 1 (unstable for
+/// |u| < 1/sqrt 3).
+fn double_well(u: f64, t: f64) -> (f64, f64) {
+    (u * u * u - u - t, 3.0 * u * u - 1.0)
+}
+
+/// The root of r(., t) in [a, b] (r(a) r(b) < 0) by bisection: an independent reference.
+fn root(a: f64, b: f64, t: f64) -> f64 {
+    let (mut lo, mut hi) = (a, b);
+    let f = |u: f64| double_well(u, t).0;
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if (f(mid) < 0.0) == (f(lo) < 0.0) { lo = mid } else { hi = mid }
+    }
+    0.5 * (lo + hi)
+}
+
+/// From inside the unstable region, settling finds the stable equilibrium downhill of the
+/// start (never the unstable one Newton can land on), converging quadratically at the end.
+#[test]
+fn settling_finds_the_stable_equilibrium_downhill_and_never_the_unstable_one() {
+    use super::settle::settle;
+    // t = 0.2: stable roots near -0.88 and 1.09, an unstable one near -0.20
+    let t = 0.2;
+    for (start, lo, hi) in [(-0.3, -1.5, -0.6), (-0.1, 0.6, 1.5), (0.0, 0.6, 1.5)] {
+        let mut p = OneDof::new(double_well);
+        let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+        p.set_time(t);
+        p.set_free_values(&[start]);
+        let report = settle(&mut p, &mut linear, &settings(), ReferenceScales::default())
+            .unwrap_or_else(|e| panic!("from {start}: {e}"));
+        let expected = root(lo, hi, t);
+        assert!((p.u - expected).abs() < 1e-10, "from {start}: {} vs the stable root {expected}", p.u);
+        assert!(double_well(p.u, t).1 > 0.0, "from {start}: an unstable equilibrium {}", p.u);
+        // the last steps are Newton's: order from the last three residuals before convergence
+        let n = &report.residual_norms;
+        assert!(n.len() >= 4, "{n:?}");
+        let k = n.len() - 1;
+        let order = (n[k - 1] / n[k - 2]).ln() / (n[k - 2] / n[k - 3]).ln();
+        assert!(order > 1.8, "from {start}: observed order {order} from {n:?}");
+    }
+    // t = 0.5: one equilibrium only, u = 1.19...; from the far side of the barrier
+    let mut p = OneDof::new(double_well);
+    let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+    p.set_time(0.5);
+    p.set_free_values(&[-0.4]);
+    settle(&mut p, &mut linear, &settings(), ReferenceScales::default()).unwrap();
+    assert!((p.u - root(0.6, 1.5, 0.5)).abs() < 1e-10, "{}", p.u);
+}

@@ -6,6 +6,14 @@
 //! when a converged load-controlled increment moved more than [`JUMP_RATIO`] times what the
 //! last increment's rate predicts (a silent jump to another branch); it hands back once t moves
 //! forward past the target that failed, or when it would leave its step window.
+//!
+//! Snaps: when neither control can go on (load control cut below its minimum increment, arc
+//! length stalled or unable to start, e.g. a run that starts inside the jump-in range), the
+//! driver settles the model just past the committed time on a stable equilibrium
+//! ([`crate::nonlinear::settle`]): the stable state the displacement-controlled
+//! system snaps to. It is committed as a jump and load control goes on from it. At most
+//! [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row without a load step in between; then the run
+//! stops with the reason.
 
 use super::arc_length_control::ArcLengthControl;
 use super::load_control::LoadControl;
@@ -15,6 +23,7 @@ use crate::error::{CoreError, Result};
 use crate::linear_solver::LinearSolver;
 use crate::model::Model;
 use crate::nonlinear::arc_length::PreviousIncrement;
+use crate::nonlinear::settle::settle;
 use crate::nonlinear::{IncrementFailure, IncrementReport, NonlinearSolver, ReferenceScales};
 use crate::problem::NonlinearProblem;
 use crate::record::interface_tracker::{CommitContext, InterfaceInfo};
@@ -29,6 +38,25 @@ use std::time::Instant;
 /// A load-controlled increment whose displacement increment exceeds this multiple of the one
 /// the previous increment's rate predicts counts as a jump over a limit point.
 pub const JUMP_RATIO: f64 = 5.0;
+
+/// Snaps in a row (no ordinary increment converging in between) after which the run stops.
+pub const MAX_SNAPS_WITHOUT_PROGRESS: usize = 3;
+
+/// A crawl: this many committed load-controlled increments in a row, each below
+/// [`CRAWL_FRACTION`] of the step's maximum increment (sizes only cuts produce). The path creeps
+/// towards a fold it cannot pass by cutting (each increment shrinks geometrically); the driver
+/// then settles one initial increment ahead instead.
+pub const CRAWL_COMMITS: usize = 6;
+pub const CRAWL_FRACTION: f64 = 1e-2;
+
+/// How a converged increment was solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Via {
+    LoadControl,
+    ArcLength,
+    /// Pseudo-transient continuation: a snap to a stable state.
+    Settling,
+}
 
 /// Everything the driver needs besides the model, the solvers and the observers.
 #[derive(Debug, Clone)]
@@ -75,6 +103,8 @@ pub fn run_steps(
         last_converged: None,
         arc_blocked: false,
         cuts_since_commit: 0,
+        snaps_in_a_row: 0,
+        small_commits_in_a_row: 0,
         law_failures: BTreeMap::new(),
         force_sum: (0.0, 0),
         since_output: 0,
@@ -151,6 +181,11 @@ struct Driver<'a> {
     /// Set when arc length had to hand back to load control; cleared by the next commit.
     arc_blocked: bool,
     cuts_since_commit: usize,
+    /// Snaps since the last ordinary increment.
+    snaps_in_a_row: usize,
+    /// Committed load-controlled increments in a row below the crawl size (see
+    /// [`CRAWL_COMMITS`]).
+    small_commits_in_a_row: usize,
     /// Interface-law failures that cut increments, each distinct one once: (law, interface,
     /// message) -> (times, first point).
     law_failures: BTreeMap<(String, String, String), (usize, usize)>,
@@ -214,16 +249,27 @@ impl Driver<'_> {
                 t_end: self.t_end,
                 breakpoints: &breakpoints,
             };
+            let inc = &step.incrementation;
+            if self.crossing.is_none() && self.small_commits_in_a_row >= CRAWL_COMMITS {
+                self.breakpoints = breakpoints;
+                self.small_commits_in_a_row = 0;
+                let reason = format!("crawling at t = {:.6} (dt = {:.2e})", self.t, self.load.dt);
+                match self.snap_over(si, &reason, inc.initial) {
+                    Flow::Continue => continue,
+                    Flow::StepDone => break,
+                    Flow::Stop(message) => return Ok(Some(Ending::Failed(message))),
+                }
+            }
             let scales = self.scales();
             let solvers = Solvers { linear: &mut *self.linear, nonlinear: &mut *self.nonlinear };
-            let by_arc_length = self.crossing.is_some();
+            let via = if self.crossing.is_some() { Via::ArcLength } else { Via::LoadControl };
             let attempt = match self.crossing.as_mut() {
                 Some(arc) => arc.attempt(self.model, solvers, &window, scales),
                 None => self.load.attempt(self.model, solvers, &window, scales),
             };
             self.breakpoints = breakpoints;
             let flow = match attempt {
-                Attempt::Converged(report) => self.converged(si, report, by_arc_length)?,
+                Attempt::Converged(report) => self.converged(si, report, via)?,
                 Attempt::Failed(failure) => self.failed(si, &failure),
                 Attempt::OutsideWindow => {
                     self.crossing = None;
@@ -278,7 +324,65 @@ impl Driver<'_> {
                 }
                 Flow::Continue
             }
-            Err(message) => Flow::Stop(message),
+            Err(message) => self.snap(si, &message),
+        }
+    }
+
+    /// Neither control can go on: settle just past the committed time (see the module
+    /// documentation) and commit the snapped state, or stop with both reasons.
+    fn snap(&mut self, si: usize, reason: &str) -> Flow {
+        let minimum = self.plan.steps[si].incrementation.minimum;
+        self.snap_over(si, reason, minimum)
+    }
+
+    /// Settles at the target `dt` past the committed time (clipped to the step and the next
+    /// breakpoint) and commits it, or stops with `reason` and why settling failed.
+    fn snap_over(&mut self, si: usize, reason: &str, dt: f64) -> Flow {
+        if self.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS {
+            return Flow::Stop(format!(
+                "{reason}; {MAX_SNAPS_WITHOUT_PROGRESS} snaps in a row found no path onward from t = {:.6}",
+                self.t
+            ));
+        }
+        let step = &self.plan.steps[si];
+        self.crossing = None;
+        self.model.rollback();
+        self.load.set_increment(dt);
+        let window = StepWindow {
+            t: self.t,
+            step_start: self.t,
+            step_end: step.end_time,
+            t_end: self.t_end,
+            breakpoints: &self.breakpoints,
+        };
+        let target = self.load.target(&window);
+        self.model.set_time(target);
+        let scales = self.scales();
+        let settings = self.nonlinear.settings().clone();
+        let settled = settle(self.model, &mut *self.linear, &settings, scales);
+        let text = match &settled {
+            Ok(r) => format!("{}: snapped at t = {target:.6} ({} descent steps)", step.name, r.iterations),
+            Err(_) => format!("{}: no stable state found at t = {target:.6}", step.name),
+        };
+        for o in self.observers.iter_mut() {
+            o.message(&text);
+        }
+        match settled {
+            Ok(report) => {
+                self.snaps_in_a_row += 1;
+                self.summary.snaps += 1;
+                match self.converged(si, report, Via::Settling) {
+                    Ok(flow) => flow,
+                    Err(e) => Flow::Stop(format!("{reason}; after the snap: {e}")),
+                }
+            }
+            Err(e) => {
+                self.model.rollback();
+                // a law that fails the same way while settling is said once
+                let same = matches!(&e, IncrementFailure::Error(CoreError::LawFailure { message, .. }) if reason.contains(message.as_str()));
+                let why = if same { "failed the same way".to_string() } else { format!("failed: {e}") };
+                Flow::Stop(format!("{reason}; settling on a stable state at t = {target:.6} {why}"))
+            }
         }
     }
 
@@ -304,7 +408,8 @@ impl Driver<'_> {
     }
 
     /// A converged attempt: accept it (or detect a jump), commit, record, adapt the increment.
-    fn converged(&mut self, si: usize, report: IncrementReport, by_arc_length: bool) -> Result<Flow> {
+    fn converged(&mut self, si: usize, report: IncrementReport, via: Via) -> Result<Flow> {
+        let by_arc_length = via == Via::ArcLength;
         let step = &self.plan.steps[si];
         let target = self.model.time;
         let (mut limit_point, mut resume) = (false, false);
@@ -315,14 +420,25 @@ impl Driver<'_> {
             self.summary.limit_points += usize::from(limit_point);
         }
         let du = self.model.increment_since_commit();
-        if !by_arc_length && self.jumped(target, &du) {
+        if via == Via::LoadControl && self.jumped(target, &du) {
             return Ok(Flow::Continue);
         }
         self.force_sum.0 += NonlinearProblem::force_norm(&*self.model);
         self.force_sum.1 += 1;
         let reversal = self.breakpoints.iter().any(|&b| (b - target).abs() <= 1e-12 * self.t_end.max(1.0));
-        self.last_converged = Some(PreviousIncrement { du: du.clone(), dt: target - self.t });
-        self.load.remember(du, target - self.t, reversal);
+        if via == Via::Settling {
+            // a snap's displacement is no rate to extrapolate or to start arc length from
+            self.last_converged = None;
+            self.load.remember(du, 0.0, true);
+            self.load.set_increment(step.incrementation.initial);
+        } else {
+            self.snaps_in_a_row = 0;
+            let small = target - self.t < CRAWL_FRACTION * step.incrementation.maximum;
+            self.small_commits_in_a_row =
+                if via == Via::LoadControl && small { self.small_commits_in_a_row + 1 } else { 0 };
+            self.last_converged = Some(PreviousIncrement { du: du.clone(), dt: target - self.t });
+            self.load.remember(du, target - self.t, reversal);
+        }
         self.arc_blocked = false;
         if resume {
             // past the point where load control failed, moving forward again

@@ -25,6 +25,10 @@ pub struct RunSummary {
     /// parameter) they passed.
     pub arc_length_increments: usize,
     pub limit_points: usize,
+    /// Increments where the path had no nearby equilibrium and the model was settled on a
+    /// stable one by a descent method (snaps: jump-in, pull-off under
+    /// displacement control).
+    pub snaps: usize,
     pub newton_iterations: usize,
     /// Numeric factorizations of the tangent.
     pub factorizations: usize,

@@ -1,0 +1,59 @@
+//! Snaps: a run that starts inside the jump-in range, or whose path has no nearby equilibrium
+//! left, settles on the stable state the displacement-controlled system snaps to and goes on
+//! (core `nonlinear::settle`, driver "snaps"). The reference is path independence: the smooth
+//! elastic Lennard-Jones sphere at w = 3 J/m^2 (Tabor 2.1) started inside the jump-in range
+//! (3 z0 from the pole, where Newton cannot find an equilibrium at t = 0) and started far away
+//! (1.2 nm, jumping in on the way) must reach the same state at the same position of the flat,
+//! and the same most tensile force on the contact branch.
+
+use stiction_tests::run_case;
+
+/// (approach, force) at the end of the loading step (t = 1).
+fn at_end_of_loading(dir: &std::path::Path) -> (f64, f64) {
+    let text = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let col = |n: &str| header.iter().position(|h| *h == n).unwrap();
+    let row = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse::<f64>().unwrap()).collect::<Vec<f64>>())
+        .find(|v| (v[col("time")] - 1.0).abs() < 1e-12)
+        .expect("a state at t = 1");
+    (row[col("approach")], row[col("force")])
+}
+
+#[test]
+fn a_start_inside_the_jump_in_range_snaps_to_the_state_a_far_start_reaches() {
+    // both end the loading with the flat 0.3 nm from the undeformed pole
+    let run = |gap: &str, approach: &str, label: &str| {
+        let gap_set = format!("interfaces.0.initial_gap={gap}");
+        let approach_set = format!("interfaces.0.approach={approach}");
+        let sets = [
+            "interfaces.0.parameters.w=3.0",
+            "mesh.parameters.h_contact=3.0",
+            "solver.continuation=\"none\"",
+            "steps.1.end_time=1.02",
+            gap_set.as_str(),
+            approach_set.as_str(),
+        ];
+        run_case("cases/validation/lj-sphere.toml", &sets, label).1
+    };
+    let near = run("0.507", "0.207", "snap-near-start");
+    let far = run("1.2", "0.9", "snap-far-start");
+    for s in [&near, &far] {
+        assert_eq!(s.status, "completed", "{:?}", s.message);
+        assert!(s.snaps >= 1, "no snap in {}", s.output_directory.display());
+    }
+    let (a_near, f_near) = at_end_of_loading(&near.output_directory);
+    let (a_far, f_far) = at_end_of_loading(&far.output_directory);
+    assert!((0.507 - a_near - (1.2 - a_far)).abs() < 1e-9, "the flat is not at the same place");
+    println!("force at the common position: near start {f_near}, far start {f_far}");
+    assert!((f_near - f_far).abs() < 1e-6 * f_far.abs(), "{f_near} vs {f_far}");
+    let (p_near, p_far) = (near.interfaces[0].pull_off_force, far.interfaces[0].pull_off_force);
+    println!("most tensile force: near start {p_near}, far start {p_far}");
+    // sampled at different positions along the same branch (increments of 0.0021 / 0.009 nm)
+    assert!((p_near - p_far).abs() < 1e-3 * p_far.abs(), "{p_near} vs {p_far}");
+    // the snap is a jump of the force, recorded as an event
+    let events = std::fs::read_to_string(near.output_directory.join("events.csv")).unwrap();
+    assert!(events.lines().nth(1).is_some_and(|l| l.contains(",jump,")), "{events}");
+}
