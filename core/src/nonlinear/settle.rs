@@ -93,9 +93,14 @@ fn critical_point(problem: &mut dyn NonlinearProblem, u0: &[f64], d: &[f64], g0:
             side = 1;
         }
     }
-    // the best point found that still lowers the energy
-    let _ = slope(problem, u0, d, lo.max(f64::MIN_POSITIVE))?;
-    Ok(if lo > 0.0 { lo } else { alpha })
+    // the best point found that still lowers the energy (the problem is left at the returned
+    // step: the last evaluation was at `alpha`)
+    if lo > 0.0 {
+        slope(problem, u0, d, lo)?;
+        Ok(lo)
+    } else {
+        Ok(alpha)
+    }
 }
 
 /// Settles the problem at its current time from its current trial state (see the module

@@ -254,7 +254,7 @@ impl Driver<'_> {
                 self.breakpoints = breakpoints;
                 self.small_commits_in_a_row = 0;
                 let reason = format!("crawling at t = {:.6} (dt = {:.2e})", self.t, self.load.dt);
-                match self.snap_over(si, &reason, inc.initial) {
+                match self.snap_over(si, &reason, inc.initial)? {
                     Flow::Continue => continue,
                     Flow::StepDone => break,
                     Flow::Stop(message) => return Ok(Some(Ending::Failed(message))),
@@ -270,7 +270,7 @@ impl Driver<'_> {
             self.breakpoints = breakpoints;
             let flow = match attempt {
                 Attempt::Converged(report) => self.converged(si, report, via)?,
-                Attempt::Failed(failure) => self.failed(si, &failure),
+                Attempt::Failed(failure) => self.failed(si, &failure)?,
                 Attempt::OutsideWindow => {
                     self.crossing = None;
                     self.arc_blocked = true;
@@ -288,7 +288,7 @@ impl Driver<'_> {
     }
 
     /// A failed attempt: roll back, then cut the active control (or start arc length).
-    fn failed(&mut self, si: usize, failure: &IncrementFailure) -> Flow {
+    fn failed(&mut self, si: usize, failure: &IncrementFailure) -> Result<Flow> {
         if let IncrementFailure::Error(CoreError::LawFailure { law, interface, point, message, .. }) = failure {
             let entry =
                 self.law_failures.entry((law.clone(), interface.clone(), message.clone())).or_insert((0, *point));
@@ -308,21 +308,26 @@ impl Driver<'_> {
             self.crossing =
                 self.last_converged.clone().and_then(|previous| ArcLengthControl::start(previous, resume_after));
             if self.crossing.is_some() {
-                return Flow::Continue;
+                return Ok(Flow::Continue);
             }
         }
         let cut = self.load.cut(failure);
         self.after_cut(si, cut, failure)
     }
 
-    fn after_cut(&mut self, si: usize, cut: std::result::Result<String, String>, failure: &IncrementFailure) -> Flow {
+    fn after_cut(
+        &mut self,
+        si: usize,
+        cut: std::result::Result<String, String>,
+        failure: &IncrementFailure,
+    ) -> Result<Flow> {
         match cut {
             Ok(what) => {
                 let text = format!("{}: {what} at t = {:.4} ({failure})", self.plan.steps[si].name, self.t);
                 for o in self.observers.iter_mut() {
                     o.message(&text);
                 }
-                Flow::Continue
+                Ok(Flow::Continue)
             }
             Err(message) => self.snap(si, &message),
         }
@@ -330,19 +335,20 @@ impl Driver<'_> {
 
     /// Neither control can go on: settle just past the committed time (see the module
     /// documentation) and commit the snapped state, or stop with both reasons.
-    fn snap(&mut self, si: usize, reason: &str) -> Flow {
+    fn snap(&mut self, si: usize, reason: &str) -> Result<Flow> {
         let minimum = self.plan.steps[si].incrementation.minimum;
         self.snap_over(si, reason, minimum)
     }
 
     /// Settles at the target `dt` past the committed time (clipped to the step and the next
-    /// breakpoint) and commits it, or stops with `reason` and why settling failed.
-    fn snap_over(&mut self, si: usize, reason: &str, dt: f64) -> Flow {
+    /// breakpoint) and commits it, or stops with `reason` and why settling failed. Errors are
+    /// those of committing (writing the outputs).
+    fn snap_over(&mut self, si: usize, reason: &str, dt: f64) -> Result<Flow> {
         if self.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS {
-            return Flow::Stop(format!(
+            return Ok(Flow::Stop(format!(
                 "{reason}; {MAX_SNAPS_WITHOUT_PROGRESS} snaps in a row found no path onward from t = {:.6}",
                 self.t
-            ));
+            )));
         }
         let step = &self.plan.steps[si];
         self.crossing = None;
@@ -371,17 +377,14 @@ impl Driver<'_> {
             Ok(report) => {
                 self.snaps_in_a_row += 1;
                 self.summary.snaps += 1;
-                match self.converged(si, report, Via::Settling) {
-                    Ok(flow) => flow,
-                    Err(e) => Flow::Stop(format!("{reason}; after the snap: {e}")),
-                }
+                self.converged(si, report, Via::Settling)
             }
             Err(e) => {
                 self.model.rollback();
                 // a law that fails the same way while settling is said once
                 let same = matches!(&e, IncrementFailure::Error(CoreError::LawFailure { message, .. }) if reason.contains(message.as_str()));
                 let why = if same { "failed the same way".to_string() } else { format!("failed: {e}") };
-                Flow::Stop(format!("{reason}; settling on a stable state at t = {target:.6} {why}"))
+                Ok(Flow::Stop(format!("{reason}; settling on a stable state at t = {target:.6} {why}")))
             }
         }
     }
