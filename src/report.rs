@@ -93,6 +93,11 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
                 });
                 lines.push(format!("  {}: contact resistance {} at max force{hysteresis}", i.name, ohm(Some(r))));
             }
+            if !i.folds.is_empty() {
+                let folds: Vec<String> =
+                    i.folds.iter().map(|f| format!("{} ({})", at(f.approach), force(f.force, force_unit))).collect();
+                lines.push(format!("  {}: folds (limit points) at approach {}", i.name, folds.join(", ")));
+            }
         }
     }
     if summary.interfaces.is_empty() {

@@ -3,6 +3,10 @@
 //! it: tables merge key by key, any other value (numbers, strings, arrays such as `steps`)
 //! replaces the base's. Relative paths in the merged case (the mesh, calibrations) are relative
 //! to the extending file's folder, so a base is normally a case in the same folder.
+//!
+//! `set = ["interfaces.0.parameters.w=3.0", ...]` in the extending file changes single keys of
+//! the merged tree, exactly as `--set` does on the command line (and before it): the way to
+//! change one entry of an array of tables such as `[[interfaces]]`, which merging replaces.
 
 use crate::error::{Result, StictionError};
 use std::path::Path;
@@ -15,7 +19,7 @@ const MAX_DEPTH: usize = 8;
 pub fn read(path: &Path) -> Result<(String, Option<toml::Value>)> {
     let text = read_text(path)?;
     let value: toml::Value = parse(path, &text)?;
-    if value.get("base").is_none() {
+    if value.get("base").is_none() && value.get("set").is_none() {
         return Ok((text, None));
     }
     let merged = resolve(path, value, 0)?;
@@ -34,7 +38,9 @@ fn parse(path: &Path, text: &str) -> Result<toml::Value> {
 /// The tree of `path` (already parsed as `value`) with its base chain merged underneath.
 fn resolve(path: &Path, mut value: toml::Value, depth: usize) -> Result<toml::Value> {
     let bad = |message: String| StictionError::CaseKey { path: path.to_path_buf(), key: "base".into(), message };
+    let sets = value.as_table_mut().and_then(|t| t.remove("set"));
     let Some(base) = value.as_table_mut().and_then(|t| t.remove("base")) else {
+        apply_sets(path, &mut value, sets)?;
         return Ok(value);
     };
     let Some(file) = base.as_str() else {
@@ -55,7 +61,25 @@ fn resolve(path: &Path, mut value: toml::Value, depth: usize) -> Result<toml::Va
     if !own_name && let Some(t) = merged.as_table_mut() {
         t.remove("name");
     }
+    apply_sets(path, &mut merged, sets)?;
     Ok(merged)
+}
+
+/// Applies the file's `set` list (strings `key=value`, as `--set`) to its merged tree.
+fn apply_sets(path: &Path, tree: &mut toml::Value, sets: Option<toml::Value>) -> Result<()> {
+    let Some(sets) = sets else { return Ok(()) };
+    let bad = |key: String, message: String| StictionError::CaseKey { path: path.to_path_buf(), key, message };
+    let Some(list) = sets.as_array() else {
+        return Err(bad("set".into(), format!("must be a list of \"key=value\" strings, got {sets}")));
+    };
+    for (i, item) in list.iter().enumerate() {
+        let Some(assignment) = item.as_str() else {
+            return Err(bad(format!("set[{i}]"), format!("must be a \"key=value\" string, got {item}")));
+        };
+        super::overrides::apply(tree, assignment)
+            .map_err(|m| bad(format!("set[{i}]"), format!("{assignment}: {m}")))?;
+    }
+    Ok(())
 }
 
 /// Merges `over` into `under`: tables key by key, anything else replaced.
@@ -100,6 +124,23 @@ mod tests {
         assert!(m.get("name").is_none() && m.get("base").is_none());
         let (_, none) = read(&dir.join("a.toml")).unwrap();
         assert!(none.is_none(), "no base: the text is parsed as it is");
+    }
+
+    #[test]
+    fn set_changes_single_keys_of_the_merged_tree_and_names_a_bad_entry() {
+        let dir = folder("set");
+        std::fs::write(dir.join("a.toml"), "[[items]]\nw = 1.0\nz = 2.0\n[[items]]\nw = 5.0\n").unwrap();
+        std::fs::write(dir.join("b.toml"), "base = \"a.toml\"\nset = [\"items.0.w=3.0\"]\n").unwrap();
+        let m = read(&dir.join("b.toml")).unwrap().1.unwrap();
+        assert_eq!(m["items"][0]["w"].as_float(), Some(3.0));
+        assert_eq!(m["items"][0]["z"].as_float(), Some(2.0), "the rest of the entry is kept");
+        assert_eq!(m["items"][1]["w"].as_float(), Some(5.0));
+        assert!(m.get("set").is_none());
+        std::fs::write(dir.join("c.toml"), "base = \"a.toml\"\nset = [\"items.7.w=3.0\"]\n").unwrap();
+        let e = read(&dir.join("c.toml")).unwrap_err().to_string();
+        assert!(e.contains("set[0]") && e.contains("items.7.w"), "{e}");
+        std::fs::write(dir.join("d.toml"), "set = \"items.0.w=3.0\"\n[[items]]\nw = 1.0\n").unwrap();
+        assert!(read(&dir.join("d.toml")).unwrap_err().to_string().contains("list"));
     }
 
     #[test]

@@ -2,6 +2,8 @@
 //! distortion, direct linear/Newton solves of a model, L2 error norms, and running shipped case
 //! files into a scratch output directory.
 
+pub mod half_space_lj;
+
 use std::path::PathBuf;
 use std::sync::Arc;
 use stiction::build::BuiltModel;

@@ -14,6 +14,10 @@
 //! central differences of the residual in t), sets the correction to a + dl b and picks dl
 //! from the constraint (the root keeping the increment closest to its previous direction). The
 //! predictor follows the tangent (b, 1) in the direction of the last converged increment.
+//! A converged increment must also point forward: where the path folds sharply within one arc
+//! length, the sphere around the committed state meets the path behind it as well, and Newton
+//! may converge there; such an increment (cosine with the previous one <= 0) is refused, so
+//! the caller shortens the arc instead of walking back and forth across the fold.
 
 use super::convergence::{NewtonSettings, ReferenceScales};
 use super::{IncrementFailure, IncrementReport};
@@ -78,6 +82,15 @@ fn constraint_root(du: &[f64], w: &[f64], b: &[f64], c2: f64, dt: f64, ds: f64) 
     }
 }
 
+/// The cosine of the angle between the increment (du, dt) and the previous one in the
+/// arc-length inner product <(a, s), (b, t)> = a.b + c^2 s t.
+fn forward_cosine(du: &[f64], dt: f64, previous: &PreviousIncrement, c2: f64) -> f64 {
+    let inner = dot(du, &previous.du) + c2 * dt * previous.dt;
+    let lengths =
+        ((dot(du, du) + c2 * dt * dt) * (dot(&previous.du, &previous.du) + c2 * previous.dt * previous.dt)).sqrt();
+    if lengths > 0.0 { inner / lengths } else { 1.0 }
+}
+
 /// Solves one arc-length increment (see the module documentation). On success the problem
 /// holds the converged trial state at its new time (not yet committed) and the increment is
 /// returned.
@@ -140,6 +153,10 @@ pub fn solve_arc_length_increment(
         // `a` holds the last correction
         if iteration > 0 && settings.converged(r_norm, force_scale, norm(&a), ds, scales) {
             report.iterations = iteration;
+            let cosine = forward_cosine(&du, dt, previous, c2);
+            if cosine <= 0.0 {
+                return Err(IncrementFailure::TurnedBack { cosine });
+            }
             return Ok((report, PreviousIncrement { du, dt }));
         }
         if iteration == settings.max_iterations {
@@ -175,4 +192,20 @@ pub fn solve_arc_length_increment(
         }
     }
     Err(IncrementFailure::Diverged { iterations: settings.max_iterations, residual: norm(problem.residual()) })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_forward_cosine_is_the_angle_in_the_weighted_norm() {
+        let previous = PreviousIncrement { du: vec![1.0, 0.0], dt: 0.5 };
+        // c = 2: the previous increment is (1, 0, 1) in the weighted coordinates
+        assert!((forward_cosine(&[1.0, 0.0], 0.5, &previous, 4.0) - 1.0).abs() < 1e-15);
+        assert!((forward_cosine(&[-1.0, 0.0], -0.5, &previous, 4.0) + 1.0).abs() < 1e-15);
+        assert!(forward_cosine(&[0.0, 1.0], 0.0, &previous, 4.0).abs() < 1e-15);
+        // the limit point: the load parameter turns, the displacement goes on
+        assert!(forward_cosine(&[1.0, 0.0], -0.1, &previous, 4.0) > 0.0);
+    }
 }

@@ -33,7 +33,15 @@ pub struct IncrementReport {
 /// Why an increment failed (the path control cuts the step).
 #[derive(Debug)]
 pub enum IncrementFailure {
-    Diverged { iterations: usize, residual: f64 },
+    Diverged {
+        iterations: usize,
+        residual: f64,
+    },
+    /// An arc-length increment converged onto the path behind the committed state (the cosine
+    /// of its angle with the previous increment, in the arc-length norm, is not positive).
+    TurnedBack {
+        cosine: f64,
+    },
     Error(CoreError),
 }
 
@@ -42,6 +50,12 @@ impl std::fmt::Display for IncrementFailure {
         match self {
             IncrementFailure::Diverged { iterations, residual } => {
                 write!(f, "no convergence after {iterations} iterations (residual {residual:.3e})")
+            }
+            IncrementFailure::TurnedBack { cosine } => {
+                write!(
+                    f,
+                    "the arc-length increment went back along the path (cosine {cosine:.2} with the previous one)"
+                )
             }
             IncrementFailure::Error(e) => write!(f, "{e}"),
         }

@@ -280,9 +280,13 @@ impl Driver<'_> {
             };
             match flow {
                 Flow::Continue => {}
-                Flow::StepDone => break,
+                Flow::StepDone => return Ok(None),
                 Flow::Stop(message) => return Ok(Some(Ending::Failed(message))),
             }
+        }
+        if let Some(k) = step.until_separated {
+            let warning = self.tracker.still_attached(self.model, k);
+            self.summary.warnings.extend(warning);
         }
         Ok(None)
     }

@@ -3,7 +3,7 @@
 //! their typed observables at each committed increment.
 
 use super::cycles::{InterfaceSample, cycles, resistance_hysteresis};
-use super::summary::InterfaceSummary;
+use super::summary::{Fold, InterfaceSummary};
 use crate::model::Model;
 use crate::observables::InterfaceObservables;
 
@@ -61,6 +61,31 @@ fn observe(model: &Model, k: usize) -> InterfaceObservables {
     model.contributions[k].observables().unwrap_or_default()
 }
 
+/// The fold between three committed states around a turn of the approach: the vertex of the
+/// parabola approach(force) through them (Newton's divided differences,
+/// a = a0 + d01 (F - F0) + c (F - F0)(F - F1), da/dF = 0); the middle state when they do not
+/// define one (equal forces, no curvature, or a vertex outside them).
+fn fold_between(time: f64, s0: &InterfaceSample, s1: &InterfaceSample, s2: &InterfaceSample) -> Fold {
+    let (f0, f1, f2) = (s0.force, s1.force, s2.force);
+    let (a0, a1, a2) = (s0.approach, s1.approach, s2.approach);
+    let middle = Fold { time, approach: a1, force: f1 };
+    if f1 == f0 || f2 == f1 || f2 == f0 {
+        return middle;
+    }
+    let d01 = (a1 - a0) / (f1 - f0);
+    let c = ((a2 - a1) / (f2 - f1) - d01) / (f2 - f0);
+    if c == 0.0 {
+        return middle;
+    }
+    let force = 0.5 * (f0 + f1) - d01 / (2.0 * c);
+    // a vertex outside the three states is an extrapolation: keep the middle state
+    let (low, high) = (f0.min(f1).min(f2), f0.max(f1).max(f2));
+    if !(low..=high).contains(&force) {
+        return middle;
+    }
+    Fold { time, approach: a0 + d01 * (force - f0) + c * (force - f0) * (force - f1), force }
+}
+
 impl InterfaceTracker {
     /// One summary per contribution of `model`, with `infos` aligned to them.
     pub fn new(model: &Model, infos: &[InterfaceInfo]) -> Self {
@@ -104,22 +129,51 @@ impl InterfaceTracker {
             if let Some(e) = self.event(model, k, &now, &before, context) {
                 events.push(e);
             }
+            if context.limit_point
+                && let (Some(x), [.., a, b]) = (sample(&now), self.samples[k].as_slice())
+            {
+                self.summaries[k].folds.push(fold_between(model.time, a, b, &x));
+            }
             self.had_contact[k] |= now.n_contact > 0;
             if let Some(x) = sample(&now) {
                 self.samples[k].push(x);
             }
-            let s = &self.summaries[k];
-            let force_scale = s.max_force.max(-s.pull_off_force);
-            if until_separated == Some(k)
-                && self.had_contact[k]
-                && now.n_contact == 0
-                && now.force.abs() <= 1e-3 * force_scale
-            {
+            self.observed[k] = now;
+            if until_separated == Some(k) && self.is_separated(k) {
                 separated = true;
             }
-            self.observed[k] = now;
         }
         (events, separated)
+    }
+
+    /// Interface `k` has separated: it had contact and now has none, with |force| <= 1e-3 of
+    /// the largest force magnitude so far.
+    fn is_separated(&self, k: usize) -> bool {
+        let (s, now) = (&self.summaries[k], &self.observed[k]);
+        let force_scale = s.max_force.max(-s.pull_off_force);
+        self.had_contact[k] && now.n_contact == 0 && now.force.abs() <= 1e-3 * force_scale
+    }
+
+    /// A warning when interface `k`, which the step was to unload until separated, is still
+    /// attached at its end: points still in contact, or a tensile force still above half the
+    /// most tensile one (a long-range law's tail, a few percent of it, is past the pull-off).
+    /// Its most tensile force so far is then not a pull-off.
+    pub fn still_attached(&self, model: &Model, k: usize) -> Option<String> {
+        let now = &self.observed[k];
+        let pull_off = self.summaries[k].pull_off_force;
+        let holding = pull_off < 0.0 && now.force < 0.5 * pull_off;
+        if self.is_separated(k) || (now.n_contact == 0 && !holding) {
+            return None;
+        }
+        Some(format!(
+            "interface '{}' had not separated by the end of its unloading step (t = {}): force {:.1} at approach {:.4} with {} points in contact, so its most tensile force ({:.1}) is not a pull-off; unload further to reach it",
+            model.contributions[k].name(),
+            model.time,
+            now.force,
+            now.approach.unwrap_or(0.0),
+            now.n_contact,
+            self.summaries[k].pull_off_force
+        ))
     }
 
     /// Maximum and pull-off forces, areas, work and viscous share of interface `k`.
@@ -236,5 +290,27 @@ impl InterfaceTracker {
             }
         }
         (events, warnings)
+    }
+}
+
+#[cfg(test)]
+mod fold_tests {
+    use super::*;
+
+    fn at(force: f64, approach: f64) -> InterfaceSample {
+        InterfaceSample { approach, force, contact_area: 0.0, resistance: None }
+    }
+
+    /// On a parabolic fold a(F) = 1 - (F - 3)^2 the vertex (F = 3, a = 1) is recovered exactly
+    /// from any three states around it; unequal spacing included.
+    #[test]
+    fn the_fold_of_a_parabolic_path_is_located_exactly() {
+        let path = |f: f64| 1.0 - (f - 3.0) * (f - 3.0);
+        let fold = fold_between(1.5, &at(1.0, path(1.0)), &at(2.5, path(2.5)), &at(3.2, path(3.2)));
+        assert!((fold.force - 3.0).abs() < 1e-12 && (fold.approach - 1.0).abs() < 1e-12, "{fold:?}");
+        assert_eq!(fold.time, 1.5);
+        // a straight line has no vertex: the middle state is kept
+        let flat = fold_between(1.0, &at(1.0, 1.0), &at(2.0, 2.0), &at(3.0, 3.0));
+        assert_eq!((flat.force, flat.approach), (2.0, 2.0));
     }
 }

@@ -97,6 +97,21 @@ pub struct InterfaceSummary {
     pub contact_resistance_at_force: Vec<ResistanceAtForce>,
     /// Each load cycle's key numbers (interfaces with a flat), as in cycles.csv.
     pub cycles: Vec<CycleSummary>,
+    /// The limit points the path crossed by arc length (jump-in and jump-out folds), each
+    /// located between the committed increments around it (interfaces with a flat).
+    pub folds: Vec<Fold>,
+}
+
+/// A limit point of the approach: where it is stationary along the path. Located as the vertex
+/// of the parabola approach(force) through the two committed increments before the turn and
+/// the one after (the approach is stationary there, so it is located to second order in the
+/// increment, the force to first order).
+#[derive(Debug, Clone, Copy, Serialize, Default, PartialEq)]
+pub struct Fold {
+    /// Pseudo-time of the increment that turned.
+    pub time: f64,
+    pub approach: f64,
+    pub force: f64,
 }
 
 /// Writes `summary.json` (atomically) when the run ends.
