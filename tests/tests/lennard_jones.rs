@@ -6,10 +6,11 @@
 //! (Proc. R. Soc. A 453, 1997), solved independently of the finite-element code in
 //! `stiction_tests::half_space_lj` (Boussinesq rings, central-gap control; converged to 1e-5).
 //! The pull-off force (the most tensile force on the curve) must agree within 3%. The limit
-//! points are compared as far as the increments resolve them: the finite-element fold is the
-//! committed increment before the one that turned back, so it lies up to one increment past
-//! the true fold; the hemisphere's base is clamped at 1000 nm, which shifts the approach by
-//! about F (1 + nu)(3 - 2 nu) / (2 pi E R) (0.01 nm at 8 uN) but not the force.
+//! points are the folds the run reports (summary.json `folds`: the vertex of the parabola
+//! approach(force) through the increments around each turn, so the approach is located to
+//! second order in the increment, the force to first order); the hemisphere's base is clamped
+//! at 1000 nm, which shifts the approach by up to F (1 + nu)(3 - 2 nu) / (2 pi E R) (0.01 nm at
+//! 8 uN) but not the force.
 //! Bounds as well: JKR 1.5 pi w R < pull-off < DMT/Bradley 2 pi w R; Maugis-Dugdale with
 //! lambda = 1.157 mu (Maugis, J. Colloid Interface Sci. 150, 1992) only approximates the LJ law
 //! (it is 5.5% below the finite-element and Greenwood values at w = 1), so it is printed.
@@ -36,8 +37,8 @@ fn greenwood(w: f64) -> CurveSummary {
 /// - Pull-off within 3%.
 /// - The folds of unloading, jump-out (the first) and jump-in (the last, where the unstable
 ///   branch meets the outer one; at w = 6 the 1 nm mesh adds two small folds right after the
-///   jump-out, as the contact edge passes nodes). The approach is stationary at a fold, so its sampling error
-///   is small: the FE approach minus Greenwood's must lie in [-0.003, c |F| + 0.003] nm, where
+///   jump-out, as the contact edge passes nodes). The approach is stationary at a fold, so its
+///   sampling error is small: the FE approach minus Greenwood's must lie in [-0.003, c |F| + 0.003] nm, where
 ///   c |F| = |F| (1 + nu)(3 - 2 nu) / (2 pi E R) bounds how much less a hemisphere clamped at
 ///   depth R stretches than a half-space (measured: 55-65% of it). The force at the jump-out
 ///   within 5% (the force is sampled to first order; the jump-in's is printed only).
