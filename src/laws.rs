@@ -63,6 +63,10 @@ impl LawRegistry {
         if let Some(dir) = std::env::current_exe().ok().and_then(|e| e.parent().map(Path::to_path_buf)) {
             search_dirs.push(dir);
         }
+        // a folder named twice (STICTION_PLUGIN_PATH and the executable's own, or a case's) is
+        // searched once: otherwise every law in it would be found twice and refused as ambiguous
+        let mut seen = std::collections::HashSet::new();
+        search_dirs.retain(|d| seen.insert(d.canonicalize().unwrap_or_else(|_| d.clone())));
         Self { builtin, search_dirs }
     }
 
@@ -174,4 +178,24 @@ pub fn make_law(
         None => e.to_string(),
     })?;
     Ok(Arc::new(law))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The same folder given twice, once through a `..` detour, is searched once, in its first
+    /// place; the executable's folder is searched last unless named before.
+    #[test]
+    fn a_folder_named_twice_is_searched_once() {
+        let dir = std::env::temp_dir().join(format!("stiction-laws-dedup-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        let detour = dir.join("sub").join("..");
+        let registry = LawRegistry::new(&[dir.clone(), detour, dir.clone()]);
+        let named: Vec<&PathBuf> =
+            registry.search_dirs().iter().filter(|d| d.canonicalize().ok() == dir.canonicalize().ok()).collect();
+        assert_eq!(named, vec![&dir]);
+        assert_eq!(registry.search_dirs()[0], dir);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
