@@ -37,7 +37,10 @@ pub fn force(value: f64, unit: &str) -> String {
 /// The lines printed after a run.
 pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
     let mut arc = if summary.arc_length_increments > 0 {
-        format!("; {} by arc length through {} limit points", summary.arc_length_increments, summary.limit_points)
+        format!(
+            "; {} by path following (arc length or dissipation) through {} limit points",
+            summary.arc_length_increments, summary.limit_points
+        )
     } else {
         String::new()
     };

@@ -3,7 +3,7 @@
 //! to the core's step driver.
 
 use crate::build::{BuiltModel, build};
-use crate::case::{ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec};
+use crate::case::{ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec, SolverSpec};
 use crate::error::{Result, StictionError};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -11,7 +11,7 @@ use std::sync::atomic::AtomicBool;
 use stiction_core::CoreError;
 use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
 use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
-use stiction_core::path::{RunPlan, run_steps};
+use stiction_core::path::{Continuation, ContinuationMethod, RunPlan, run_steps};
 use stiction_core::record::{CyclesWriter, EventsRecorder, HistoryRecorder, Observer, SummaryWriter, VtkRecorder};
 
 pub use stiction_core::record::{InterfaceSummary, RunSummary};
@@ -55,7 +55,12 @@ fn observers(
 ) -> Result<Vec<Box<dyn Observer>>> {
     let model = &built.model;
     let mut list: Vec<Box<dyn Observer>> = vec![
-        Box::new(HistoryRecorder::create(&out.join("history.csv"), model, built.reaction_groups.clone())?),
+        Box::new(HistoryRecorder::create(
+            &out.join("history.csv"),
+            model,
+            built.reaction_groups.clone(),
+            built.load_groups.clone(),
+        )?),
         Box::new(EventsRecorder::create(&out.join("events.csv"))?),
     ];
     if case.case.output.vtk {
@@ -71,6 +76,16 @@ fn observers(
 }
 
 /// Runs an already built model; the model keeps the final converged state for inspection.
+/// The case's `solver.continuation` as the driver's crossing plan.
+fn continuation(solver: &SolverSpec) -> Option<Continuation> {
+    let method = match solver.continuation {
+        ContinuationSpec::None => return None,
+        ContinuationSpec::ArcLength => ContinuationMethod::ArcLength,
+        ContinuationSpec::Dissipation => ContinuationMethod::Dissipation,
+    };
+    Some(Continuation { method, after_cuts: solver.arc_length_after_cuts })
+}
+
 pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions) -> Result<RunSummary> {
     if case.case.solver.threads > 0 {
         // Ignored if a global pool exists already (e.g. several runs in one process).
@@ -88,8 +103,7 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         units: case.case.units.as_ref().map_or_else(Default::default, |u| (u.length.clone(), u.force.clone())),
         output_directory: out.clone(),
         steps: built.steps.clone(),
-        arc_length_after_cuts: (case.case.solver.continuation == ContinuationSpec::ArcLength)
-            .then_some(case.case.solver.arc_length_after_cuts),
+        continuation: continuation(&case.case.solver),
         interfaces: built.interfaces.clone(),
         interrupt: options.interrupt.clone(),
     };

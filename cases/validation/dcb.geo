@@ -1,7 +1,7 @@
 // One arm of a mode-I double cantilever beam (the symmetric half): length L, width B,
 // thickness H, initial crack a0 from the loaded end x = 0. The ligament (z = 0, x > a0) is
 // bonded to the symmetry plane. Fine mesh h_fine in the band a0 - 5 < x < x_fine, z < 2 H / 5.
-// Groups: body, ligament, far_end (x = L), load_line (x = 0, z = 0).
+// Groups: body, ligament, far_end (x = L), load_line (x = 0, z = 0), load_end (the face x = 0).
 SetFactory("OpenCASCADE");
 DefineConstant[ L = {100.0, Min 1, Name "L"}, B = {2.0, Min 0.01, Name "B"}, H = {5.0, Min 0.01, Name "H"}, a0 = {30.0, Min 0, Name "a0"}, h_fine = {1.0, Min 0.05, Name "h_fine"}, h_coarse = {2.5, Min 0.05, Name "h_coarse"}, x_fine = {70.0, Min 0, Name "x_fine"} ];
 Box(1) = {0, 0, 0, a0, B, H};
@@ -12,6 +12,7 @@ Physical Volume("body") = Volume{:};
 Physical Surface("ligament") = Surface In BoundingBox{a0 - e, -e, -e, L + e, B + e, e};
 Physical Surface("far_end") = Surface In BoundingBox{L - e, -e, -e, L + e, B + e, H + e};
 Physical Curve("load_line") = Curve In BoundingBox{-e, -e, -e, e, B + e, e};
+Physical Surface("load_end") = Surface In BoundingBox{-e, -e, -e, e, B + e, H + e};
 Field[1] = Box;
 Field[1].VIn = h_fine;
 Field[1].VOut = h_coarse;

@@ -47,6 +47,16 @@ impl Amplitude {
         self.values[i] + s * (self.values[i + 1] - self.values[i])
     }
 
+    /// da/dt on the segment that contains t (the later one at a breakpoint); 0 beyond the ends.
+    pub fn slope(&self, t: f64) -> f64 {
+        let n = self.times.len();
+        if n < 2 || t < self.times[0] || t >= self.times[n - 1] {
+            return 0.0;
+        }
+        let i = self.times.partition_point(|&ti| ti <= t) - 1;
+        (self.values[i + 1] - self.values[i]) / (self.times[i + 1] - self.times[i])
+    }
+
     /// Breakpoints strictly inside (t0, t1): steps land on them so kinks are resolved exactly.
     pub fn breakpoints_between(&self, t0: f64, t1: f64) -> impl Iterator<Item = f64> + '_ {
         self.times.iter().copied().filter(move |&t| t > t0 && t < t1)
@@ -67,6 +77,9 @@ mod tests {
         assert!((a.value(0.5) - 1.0).abs() < 1e-15);
         assert!((a.value(2.0) - 0.0).abs() < 1e-15);
         assert_eq!(a.value(5.0), -2.0);
+        assert_eq!(a.slope(0.5), 2.0);
+        assert_eq!(a.slope(1.0), -2.0);
+        assert_eq!(a.slope(3.5), 0.0);
         assert!(Amplitude::new(vec![0.0, 0.0], vec![1.0, 2.0]).is_err());
     }
 }

@@ -214,6 +214,18 @@ pub trait Contribution: Send {
     ) -> Result<()>;
     fn commit(&mut self) {}
     fn rollback(&mut self) {}
+    /// The energy dissipated by damage from the committed state to the trial state of the
+    /// last assembly, for laws that unload secantly to their origin (damage, penalty contact):
+    /// per point the stored energy is -v g / 2 (v the law's value, positive pushing apart, g
+    /// the gap), and the trapezoidal work minus its change is
+    ///   dD = 1/2 sum_p w_p (v_p g_c,p - v_c,p g_p)   (c: committed),
+    /// exact on a piecewise-linear softening envelope, zero for a secant or reversible linear
+    /// response. Adds d(dD)/du = sum_p w_p (k_p g_c,p - v_c,p)/2 dg_p/du (k = dv/dg) to
+    /// `gradient` (all dofs) and returns (dD, d(dD)/dt at fixed u). None: the contribution
+    /// has no damage to report.
+    fn damage_dissipation(&self, _gradient: &mut [f64]) -> Option<(f64, f64)> {
+        None
+    }
     /// Amplitudes this contribution follows (their breakpoints are landed on exactly).
     fn amplitudes(&self) -> Vec<Arc<Amplitude>> {
         Vec::new()
@@ -547,6 +559,32 @@ impl Model {
         largest
     }
 
+    /// The damage dissipation of the contributions from the committed state to the trial state
+    /// of the last assembly (see [`Contribution::damage_dissipation`]), with its gradient on
+    /// the free dofs written to `gradient` and its rate in pseudo-time (the contributions' own
+    /// plus that of the prescribed displacements they touch). None when no contribution reports
+    /// damage.
+    pub fn damage_dissipation(&self, gradient: &mut [f64]) -> Option<(f64, f64)> {
+        let mut full = vec![0.0; self.n_dofs()];
+        let mut total: Option<(f64, f64)> = None;
+        for c in &self.contributions {
+            if let Some((energy, rate)) = c.damage_dissipation(&mut full) {
+                let (e, r) = total.unwrap_or((0.0, 0.0));
+                total = Some((e + energy, r + rate));
+            }
+        }
+        let (energy, mut rate) = total?;
+        // prescribed dofs move with t on the segment between the committed and trial times
+        let middle = 0.5 * (self.time + self.time_committed);
+        for p in &self.prescribed {
+            rate += full[p.dof] * p.scale * p.amplitude.slope(middle);
+        }
+        for (g, &dof) in gradient.iter_mut().zip(&self.free_dofs) {
+            *g = full[dof];
+        }
+        Some((energy, rate))
+    }
+
     /// Total plastic (or other material) dissipation at the committed state:
     /// sum over points of D(state) * point volume.
     pub fn dissipation(&self) -> f64 {
@@ -636,5 +674,8 @@ impl crate::problem::NonlinearProblem for Model {
     }
     fn rollback(&mut self) {
         Model::rollback(self);
+    }
+    fn damage_dissipation(&self, gradient: &mut [f64]) -> Option<(f64, f64)> {
+        Model::damage_dissipation(self, gradient)
     }
 }

@@ -41,4 +41,11 @@ pub trait NonlinearProblem {
     fn commit(&mut self);
     /// Returns to the last committed state.
     fn rollback(&mut self);
+    /// The energy dissipated by damage from the committed to the trial state of the last
+    /// assembly, its gradient on the free dofs (written to `gradient`) and its rate in
+    /// pseudo-time: what a dissipation-based path constraint controls. None when the problem
+    /// has no damaging part.
+    fn damage_dissipation(&self, _gradient: &mut [f64]) -> Option<(f64, f64)> {
+        None
+    }
 }

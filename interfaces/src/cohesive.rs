@@ -9,6 +9,7 @@
 //! Forces: on B f = N t w with t = sum_i v_i e_i, on A the opposite; tangent
 //! dt_c / d du_e = sum_ij e_i,c (dv_i / d delta_j) e_j,e.
 
+use crate::damage_dissipation::{PointState, damages_secantly, point_dissipation};
 use crate::point_law::{evaluate_point, evaluate_point_mixed, initial_states};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -60,9 +61,15 @@ pub struct CohesiveElements {
     /// Opening and value per point in the local frame (trial, then committed for output).
     opening: Vec<[f64; 3]>,
     value: Vec<[f64; 3]>,
+    /// d value_i / d delta_j per point (trial).
+    slope: Vec<[[f64; 3]; 3]>,
     trial_summary: [f64; 3],
     committed_summary: [f64; 3],
     committed_fields: (Vec<[f64; 3]>, Vec<[f64; 3]>),
+    /// Value, tangent and opening per point at the committed state (for the dissipation).
+    committed_points: Vec<PointState>,
+    /// The law damages with secant unloading ([`crate::damage_dissipation::damages_secantly`]).
+    damages: bool,
 }
 
 impl CohesiveElements {
@@ -118,6 +125,7 @@ impl CohesiveElements {
         }
         let state = initial_states(law.as_ref(), points.len());
         let n = points.len();
+        let damages = damages_secantly(law.as_ref());
         Ok(Self {
             name: name.to_string(),
             law,
@@ -128,9 +136,12 @@ impl CohesiveElements {
             state_committed: state,
             opening: vec![[0.0; 3]; n],
             value: vec![[0.0; 3]; n],
+            slope: vec![[[0.0; 3]; 3]; n],
             trial_summary: [0.0; 3],
             committed_summary: [0.0; 3],
             committed_fields: (vec![[0.0; 3]; n], vec![[0.0; 3]; n]),
+            committed_points: vec![PointState::default(); n],
+            damages,
         })
     }
 }
@@ -188,6 +199,7 @@ impl Contribution for CohesiveElements {
             };
             self.opening[i] = delta;
             self.value[i] = v;
+            self.slope[i] = dv;
             total += v[0] * p.weight;
             if in_contact {
                 area += p.weight;
@@ -238,10 +250,39 @@ impl Contribution for CohesiveElements {
         Ok(())
     }
 
+    /// dD of each point ([`crate::damage_dissipation`]), with d delta_j / d u_B = N e_j =
+    /// -d delta_j / d u_A; the opening does not depend on t.
+    fn damage_dissipation(&self, gradient: &mut [f64]) -> Option<(f64, f64)> {
+        if !self.damages {
+            return None;
+        }
+        let dpn = self.dpn;
+        let mut energy = 0.0;
+        for (i, p) in self.points.iter().enumerate() {
+            let trial = PointState { value: self.value[i], tangent: self.slope[i], opening: self.opening[i] };
+            let (e, local) = point_dissipation(&trial, &self.committed_points[i], p.weight);
+            energy += e;
+            let global: [f64; 3] = std::array::from_fn(|c| (0..3).map(|j| local[j] * p.frame[j][c]).sum());
+            if global.iter().all(|&g| g == 0.0) {
+                continue;
+            }
+            for (k, (&na, &nb)) in p.a.iter().zip(&p.b).enumerate() {
+                for c in 0..dpn {
+                    gradient[nb * dpn + c] += p.shape[k] * global[c];
+                    gradient[na * dpn + c] -= p.shape[k] * global[c];
+                }
+            }
+        }
+        Some((energy, 0.0))
+    }
+
     fn commit(&mut self) {
         self.state_committed.copy_from_slice(&self.state_trial);
         self.committed_summary = self.trial_summary;
         self.committed_fields = (self.opening.clone(), self.value.clone());
+        for (i, c) in self.committed_points.iter_mut().enumerate() {
+            *c = PointState { value: self.value[i], tangent: self.slope[i], opening: self.opening[i] };
+        }
     }
 
     fn rollback(&mut self) {

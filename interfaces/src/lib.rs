@@ -11,6 +11,7 @@
 pub mod asperity_layout;
 pub mod cohesive;
 pub mod contact_resistance;
+pub mod damage_dissipation;
 pub mod footprint;
 pub mod mesh_split;
 pub mod plugin;

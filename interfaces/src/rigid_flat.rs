@@ -26,6 +26,7 @@
 //! accumulated and reported so it can be kept small.
 
 use crate::contact_resistance::{ContactSpot, ResistanceModel};
+use crate::damage_dissipation::{PointState, damages_secantly, point_dissipation};
 use crate::footprint::locate_footprint;
 use crate::point_law::{evaluate_point, initial_states};
 use crate::surface_locator::SurfaceLocator;
@@ -108,6 +109,8 @@ pub struct RigidFlat {
     resistance: Option<ResistanceModel>,
     resistance_committed: f64,
     footprint: Option<FootprintResolution>,
+    /// The law damages with secant unloading ([`crate::damage_dissipation::damages_secantly`]).
+    damages: bool,
 }
 
 /// How finely the mesh resolves the points' footprints.
@@ -309,7 +312,6 @@ impl RigidFlat {
         let n_fields = 4 + ns;
         Ok(Self {
             name: spec.name,
-            law,
             dpn: kinematics.dofs_per_node(),
             normal,
             base_level: reference_level - spec.initial_gap,
@@ -336,6 +338,8 @@ impl RigidFlat {
             resistance: spec.resistance,
             resistance_committed: f64::INFINITY,
             footprint: None,
+            damages: damages_secantly(law.as_ref()),
+            law,
         })
     }
 
@@ -455,6 +459,40 @@ impl Contribution for RigidFlat {
 
     fn amplitudes(&self) -> Vec<Arc<Amplitude>> {
         vec![self.approach_amplitude.clone()]
+    }
+
+    /// dD of each point ([`crate::damage_dissipation`]); the gap moves with the nodes
+    /// (dg/du_a = N_a n) and against the flat (dg/dt = -d approach/dt).
+    fn damage_dissipation(&self, gradient: &mut [f64]) -> Option<(f64, f64)> {
+        if !self.damages {
+            return None;
+        }
+        let (gap_c, value_c) = (&self.committed_fields[0], &self.committed_fields[1]);
+        let middle = 0.5 * (self.time_committed + self.trial_time);
+        let approach_rate = self.approach_scale * self.approach_amplitude.slope(middle);
+        let (dpn, n) = (self.dpn, self.normal);
+        let normal_only = |value: f64, slope: f64, gap: f64| PointState {
+            value: [value, 0.0, 0.0],
+            tangent: [[slope, 0.0, 0.0], [0.0; 3], [0.0; 3]],
+            opening: [gap, 0.0, 0.0],
+        };
+        let (mut energy, mut rate) = (0.0, 0.0);
+        for (i, p) in self.points.iter().enumerate() {
+            let trial = normal_only(self.value[i], self.slope[i], self.gap[i]);
+            let committed = normal_only(value_c[i], self.slope_committed.get(i).copied().unwrap_or(0.0), gap_c[i]);
+            let (e, d) = point_dissipation(&trial, &committed, p.weight);
+            energy += e;
+            if d[0] == 0.0 {
+                continue;
+            }
+            rate -= d[0] * approach_rate;
+            for (a, &node) in p.nodes.iter().enumerate() {
+                for k in 0..dpn {
+                    gradient[node * dpn + k] += d[0] * p.shape[a] * n[k];
+                }
+            }
+        }
+        Some((energy, rate))
     }
 
     fn commit(&mut self) {

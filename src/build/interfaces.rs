@@ -84,6 +84,7 @@ pub fn build_interfaces(
     let plugin_dirs: Vec<PathBuf> = c.plugin_path.iter().map(|p| case.base_dir().join(p)).collect();
     let registry = LawRegistry::new(&plugin_dirs);
     let (mut contributions, mut layouts) = (Vec::new(), Vec::new());
+    let mut laws = Vec::new();
     for (i, spec) in c.interfaces.iter().enumerate() {
         let key = format!("interfaces[{i}]");
         if spec.kind != "rigid-flat" && spec.kind != "cohesive" {
@@ -100,6 +101,7 @@ pub fn build_interfaces(
         let law_context = LawContext { modulus: ctx.modulus, face_size };
         let law = make_law(&registry, &spec.law, case.base_dir(), &given, config_file.as_deref(), &law_context)
             .map_err(|m| case.error(format!("{key}.law"), m))?;
+        laws.push(law.clone());
         if spec.kind == "cohesive" {
             contributions.push(cohesive(case, &key, i, spec, ctx, law, face_size)?);
         } else {
@@ -107,6 +109,17 @@ pub fn build_interfaces(
             contributions.push(flat);
             layouts.extend(layout.map(|l| (spec.name.clone(), l)));
         }
+    }
+    let dissipation = c.solver.continuation == crate::case::ContinuationSpec::Dissipation;
+    if dissipation && !laws.iter().any(|l| stiction_interfaces::damage_dissipation::damages_secantly(l.as_ref())) {
+        let names: Vec<&str> = laws.iter().map(|l| l.name()).collect();
+        return Err(case.error(
+            "solver.continuation",
+            format!(
+                "\"dissipation\" follows the energy that damage dissipates, but no interface law damages (laws: {}; a damage law declares a state named 'damage' and unloads secantly, as cohesive-zone does): use \"arc-length\"",
+                if names.is_empty() { "none".to_string() } else { names.join(", ") }
+            ),
+        ));
     }
     Ok((contributions, layouts))
 }
@@ -172,10 +185,10 @@ fn rigid_flat(
         (Some(v), _) if v.len() == dpn => [v[0], v[1], if dpn == 3 { v[2] } else { 0.0 }],
         (Some(_), _) => return Err(case.error(format!("{key}.normal"), format!("needs {dpn} components"))),
     };
-    if spec.viscosity > 0.0 && case.case.solver.continuation == crate::case::ContinuationSpec::ArcLength {
+    if spec.viscosity > 0.0 && case.case.solver.continuation != crate::case::ContinuationSpec::None {
         return Err(case.error(
             format!("{key}.viscosity"),
-            "a viscous regularisation cannot be combined with solver.continuation = \"arc-length\" (the viscous term needs time to move forward; arc length may turn it back): use one of them",
+            "a viscous regularisation cannot be combined with solver.continuation = \"arc-length\" or \"dissipation\" (the viscous term needs time to move forward; path following may turn it back): use one of them",
         ));
     }
     let flat_spec = stiction_interfaces::RigidFlatSpec {

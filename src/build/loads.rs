@@ -35,17 +35,19 @@ fn traction_of(case: &LoadedCase, key: &str, l: &LoadSpec, dpn: usize) -> Result
     })
 }
 
-/// Adds the case's distributed loads to `model`.
+/// Adds the case's distributed loads to `model`; returns each loaded group once with its
+/// nodes (their mean displacement goes to `history.csv`).
 pub fn add_loads(
     case: &LoadedCase,
     mesh: &Mesh,
     kin: Kinematics,
     amplitudes: &Amplitudes,
     model: &mut Model,
-) -> Result<()> {
+) -> Result<Vec<(String, Vec<usize>)>> {
     let c = &case.case;
+    let mut load_groups: Vec<(String, Vec<usize>)> = Vec::new();
     if c.loads.is_empty() {
-        return Ok(());
+        return Ok(load_groups);
     }
     let dpn = kin.dofs_per_node();
     let model_dim = if kin == Kinematics::Solid3D { 3 } else { 2 };
@@ -107,6 +109,9 @@ pub fn add_loads(
             vector,
             amplitude: amplitudes.get(case, format!("{key}.amplitude"), &l.amplitude)?,
         });
+        if !load_groups.iter().any(|(n, _)| n == &l.group) {
+            load_groups.push((l.group.clone(), mesh.group_nodes(group)));
+        }
     }
-    Ok(())
+    Ok(load_groups)
 }

@@ -31,6 +31,8 @@ pub struct BuiltModel {
     pub model: Model,
     /// Groups whose reactions go to `history.csv` (name, nodes).
     pub reaction_groups: Vec<(String, Vec<usize>)>,
+    /// Loaded groups whose mean displacement goes to `history.csv` (name, nodes).
+    pub load_groups: Vec<(String, Vec<usize>)>,
     /// Discrete point layouts per interface name (written to the output as CSV).
     pub layouts: Vec<(String, Vec<stiction_interfaces::DiscretePoint>)>,
     pub mesh_path: PathBuf,
@@ -63,7 +65,7 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
     sections::add_sections(case, &mesh, kin, &materials, &mut model)?;
     let amplitudes = amplitudes::Amplitudes::new(case)?;
     let reaction_groups = boundaries::add_boundaries(case, &mesh, kin, &amplitudes, &mut model)?;
-    loads::add_loads(case, &mesh, kin, &amplitudes, &mut model)?;
+    let load_groups = loads::add_loads(case, &mesh, kin, &amplitudes, &mut model)?;
     let context = interfaces::InterfaceContext {
         mesh: &mesh,
         kin,
@@ -92,6 +94,7 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
         interfaces,
         model,
         reaction_groups,
+        load_groups,
         layouts,
         mesh_path,
     })

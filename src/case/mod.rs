@@ -352,9 +352,11 @@ pub struct SolverSpec {
     #[serde(default = "default_growth")]
     pub growth_factor: f64,
     /// How to cross a limit point where the increment keeps failing: "none" (default: cut
-    /// until the minimum increment) or "arc-length" (Crisfield's cylindrical arc-length
-    /// continuation in the load parameter, which may turn the approach back; load control
-    /// resumes beyond the point that failed).
+    /// until the minimum increment, then snap to a stable state), "arc-length" (Crisfield's
+    /// spherical arc-length continuation in the load parameter, which may turn the approach
+    /// back) or "dissipation" (each increment dissipates a set energy by damage: cohesive
+    /// cracks and their snap-backs, for laws that unload secantly; an arc length where nothing
+    /// damages). Load control resumes beyond the point that failed.
     #[serde(default)]
     pub continuation: ContinuationSpec,
     /// Nonlinear solver: "quasi-newton" (default: BFGS on a reused factorization, refactorized
@@ -416,6 +418,7 @@ pub enum ContinuationSpec {
     #[default]
     None,
     ArcLength,
+    Dissipation,
 }
 
 fn default_max_viscous_share() -> f64 {
@@ -474,7 +477,7 @@ pub fn defaults_help() -> String {
          (0 -> 1 over t in [0, 1]); steps[].initial_increment = step/10, min_increment = 1e-6 step, \
          max_increment = step, output_every = 1; solver.max_iterations = {}, tol_residual = {:e}, \
          tol_displacement = {:e}, line_search = {}, threads = 0 (all cores), cut_factor = {}, \
-         growth_factor = {}, continuation = \"none\" (or \"arc-length\"), arc_length_after_cuts = {}, \
+         growth_factor = {}, continuation = \"none\" (or \"arc-length\", \"dissipation\"), arc_length_after_cuts = {}, \
          method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"), \
          refactorization_cost_ratio = 0 (measured times); \
          interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \

@@ -43,6 +43,23 @@ pub fn run_case(relative: &str, sets: &[&str], label: &str) -> (BuiltModel, RunS
     (built, summary)
 }
 
+/// The named columns of a run's history.csv, one vector per row (the initial state included).
+pub fn history_columns(dir: &std::path::Path, names: &[&str]) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let index: Vec<usize> = names
+        .iter()
+        .map(|n| header.iter().position(|h| h == n).unwrap_or_else(|| panic!("no column {n} in {header:?}")))
+        .collect();
+    text.lines()
+        .skip(1)
+        .map(|line| {
+            let v: Vec<&str> = line.split(',').collect();
+            index.iter().map(|&i| v[i].parse().unwrap()).collect()
+        })
+        .collect()
+}
+
 pub use stiction_meshes::generate::{structured_cube, structured_rectangle};
 
 /// Prescribes `exact(x)` on every node for which `on_boundary(x)` holds.

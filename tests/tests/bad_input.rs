@@ -121,3 +121,16 @@ fn msh22_and_malformed_files_are_explained() {
     let e = stiction_meshes::read_msh(&none).unwrap_err().to_string();
     assert!(e.contains("not-a-mesh.msh") && e.contains("$MeshFormat"), "{e}");
 }
+
+/// Dissipation control needs a damage law; with only a reversible one (Lennard-Jones) the
+/// error names the key, the laws and the alternative.
+#[test]
+fn dissipation_control_without_a_damage_law_is_refused() {
+    let path = workspace_root().join("cases/validation/lj-block-arc-length.toml");
+    let (msg, code) = failure(&path, &["solver.continuation=\"dissipation\""]);
+    assert_eq!(code, 2);
+    assert!(
+        msg.contains("solver.continuation") && msg.contains("lennard-jones") && msg.contains("arc-length"),
+        "{msg}"
+    );
+}

@@ -19,6 +19,7 @@
 //! may converge there; such an increment (cosine with the previous one <= 0) is refused, so
 //! the caller shortens the arc instead of walking back and forth across the fold.
 
+use super::bordered::{bordered_solves, residual_rate};
 use super::convergence::{NewtonSettings, ReferenceScales};
 use super::{IncrementFailure, IncrementReport};
 use crate::error::CoreError;
@@ -34,21 +35,6 @@ pub struct PreviousIncrement {
     pub du: Vec<f64>,
     /// Pseudo-time increment (negative on a branch that turned back).
     pub dt: f64,
-}
-
-/// dR/dt at the problem's displacement by central differences of the residual in t (step h);
-/// restores the problem's time.
-fn residual_rate(problem: &mut dyn NonlinearProblem, t: f64, h: f64, rate: &mut [f64]) -> Result<(), CoreError> {
-    problem.set_time(t + h);
-    problem.assemble(false)?;
-    rate.copy_from_slice(problem.residual());
-    problem.set_time(t - h);
-    problem.assemble(false)?;
-    for (r, m) in rate.iter_mut().zip(problem.residual()) {
-        *r = (*r - m) / (2.0 * h);
-    }
-    problem.set_time(t);
-    Ok(())
 }
 
 /// One arc-length increment's request: length `ds` (free-dof displacement norm) from the
@@ -162,24 +148,7 @@ pub fn solve_arc_length_increment(
         if iteration == settings.max_iterations {
             break;
         }
-        for (ai, r) in a.iter_mut().zip(problem.residual()) {
-            *ai = -r;
-        }
-        // (the rate's assemblies leave the tangent of (u, t) in place)
-        let timer = Instant::now();
-        residual_rate(problem, t0 + dt, h, &mut rate)?;
-        report.assembly_seconds += timer.elapsed().as_secs_f64();
-        let timer = Instant::now();
-        linear.factorize(problem.pattern(), problem.tangent())?;
-        report.factorization_seconds += timer.elapsed().as_secs_f64();
-        report.factorizations += 1;
-        let timer = Instant::now();
-        for (bi, q) in b.iter_mut().zip(&rate) {
-            *bi = -q;
-        }
-        linear.solve_in_place(&mut a)?;
-        linear.solve_in_place(&mut b)?;
-        report.solve_seconds += timer.elapsed().as_secs_f64();
+        bordered_solves(problem, linear, t0 + dt, h, (&mut a, &mut b), &mut report)?;
         let w: Vec<f64> = du.iter().zip(&a).map(|(x, y)| x + y).collect();
         let dl = constraint_root(&du, &w, &b, c2, dt, ds);
         for ((d, ai), bi) in du.iter_mut().zip(a.iter_mut()).zip(&b) {

@@ -1,11 +1,13 @@
 //! Nonlinear solvers: they drive a [`NonlinearProblem`] to equilibrium at a given pseudo-time
 //! with a [`LinearSolver`], and know nothing of steps, outputs or the case. Full Newton is
 //! [`NewtonSolver`]; [`arc_length`] solves one increment on a constraint in (u, t) for path
-//! following; [`settle`] settles on a stable equilibrium where the path has no nearby
+//! following, [`dissipation`] one on the energy its damage dissipates; [`settle`] settles on a stable equilibrium where the path has no nearby
 //! one (a snap). A quasi-Newton or Krylov-on-a-stale-factor strategy is a new [`NonlinearSolver`].
 
 pub mod arc_length;
+mod bordered;
 pub mod convergence;
+pub mod dissipation;
 pub mod newton;
 pub mod quasi_newton;
 pub mod settle;
@@ -42,6 +44,9 @@ pub enum IncrementFailure {
     TurnedBack {
         cosine: f64,
     },
+    /// A dissipation-controlled increment found nothing damaging within its reach (the
+    /// constraint has no gradient).
+    NoDissipation,
     Error(CoreError),
 }
 
@@ -56,6 +61,9 @@ impl std::fmt::Display for IncrementFailure {
                     f,
                     "the arc-length increment went back along the path (cosine {cosine:.2} with the previous one)"
                 )
+            }
+            IncrementFailure::NoDissipation => {
+                write!(f, "no damage within reach of the increment: the dissipation cannot set its length")
             }
             IncrementFailure::Error(e) => write!(f, "{e}"),
         }

@@ -1,6 +1,7 @@
 //! The nonlinear solvers on one-unknown problems with closed-form equilibrium paths: a cubic
-//! snap-through under load control, and a two-spring chain (linear spring k in series with a
-//! softening spring F = g exp(-g)) whose end displacement t is prescribed, which snaps back.
+//! snap-through under load control, a two-spring chain (linear spring k in series with a
+//! softening spring F = g exp(-g)) whose end displacement t is prescribed, which snaps back,
+//! and a damaging bond pulled through a spring (dissipation control through its snap-back).
 
 use super::arc_length::{ArcLengthRequest, PreviousIncrement, solve_arc_length_increment};
 use super::{NewtonSettings, ReferenceScales, solve_increment};
@@ -228,4 +229,175 @@ fn settling_finds_the_stable_equilibrium_downhill_and_never_the_unstable_one() {
     p.set_free_values(&[-0.4]);
     settle(&mut p, &mut linear, &settings(), ReferenceScales::default()).unwrap();
     assert!((p.u - root(0.6, 1.5, 0.5)).abs() < 1e-10, "{}", p.u);
+}
+
+/// A bond that damages (bilinear: stiffness K_BOND up to the opening G0, linear softening to
+/// zero at GF, secant unloading) at node u, pulled through a spring K_PULL whose end is at t:
+/// r = s(u, kappa) - K_PULL (t - u). On the softening branch t = u + s(u) / K_PULL decreases
+/// with u when K_PULL < s_max / (GF - G0): a snap-back.
+struct DamageChain {
+    u: f64,
+    t: f64,
+    /// Largest opening so far (committed), and the committed (u, t).
+    kappa: f64,
+    committed: (f64, f64),
+    /// Trial bond traction (pulling the node back) and its slope.
+    bond: (f64, f64),
+    residual: [f64; 1],
+    tangent: [f64; 1],
+    pattern: SparsityPattern,
+    solution: [f64; 2],
+}
+
+const K_BOND: f64 = 100.0;
+const G0: f64 = 0.01;
+const GF: f64 = 0.04;
+const K_PULL: f64 = 10.0;
+
+impl DamageChain {
+    fn new() -> Self {
+        let cells = [vec![0usize]];
+        let pattern = SparsityPattern::from_cells(1, 1, 1, cells.iter().map(|c| c.as_slice()), |a, _| Some(a));
+        let (residual, tangent, solution) = ([0.0], [0.0], [0.0; 2]);
+        Self {
+            u: 0.0,
+            t: 0.0,
+            kappa: 0.0,
+            committed: (0.0, 0.0),
+            bond: (0.0, 0.0),
+            residual,
+            tangent,
+            pattern,
+            solution,
+        }
+    }
+
+    /// The bond's traction and slope at opening g from the largest opening kappa.
+    fn bond_at(g: f64, kappa: f64) -> (f64, f64) {
+        let envelope = |x: f64| if x <= G0 { K_BOND * x } else { (K_BOND * G0 * (GF - x) / (GF - G0)).max(0.0) };
+        if g > kappa && g > G0 {
+            let slope = if g < GF { -K_BOND * G0 / (GF - G0) } else { 0.0 };
+            (envelope(g), slope)
+        } else {
+            let k = kappa.max(G0);
+            let secant = envelope(k) / k;
+            (secant * g, secant)
+        }
+    }
+
+    /// The energy dissipated at largest opening kappa (closed form).
+    fn dissipated(kappa: f64) -> f64 {
+        if kappa <= G0 {
+            return 0.0;
+        }
+        let k = kappa.min(GF);
+        let s = K_BOND * G0 * (GF - k) / (GF - G0);
+        0.5 * K_BOND * G0 * G0 + 0.5 * (K_BOND * G0 + s) * (k - G0) - 0.5 * s * k
+    }
+}
+
+impl NonlinearProblem for DamageChain {
+    fn n_free(&self) -> usize {
+        1
+    }
+    fn pattern(&self) -> &SparsityPattern {
+        &self.pattern
+    }
+    fn set_time(&mut self, t: f64) {
+        self.t = t;
+        self.solution = [self.u, t];
+    }
+    fn time(&self) -> f64 {
+        self.t
+    }
+    fn assemble(&mut self, _with_tangent: bool) -> Result<()> {
+        self.bond = Self::bond_at(self.u, self.kappa);
+        self.residual = [self.bond.0 - K_PULL * (self.t - self.u)];
+        self.tangent = [self.bond.1 + K_PULL];
+        Ok(())
+    }
+    fn residual(&self) -> &[f64] {
+        &self.residual
+    }
+    fn tangent(&self) -> &[f64] {
+        &self.tangent
+    }
+    fn force_norm(&self) -> f64 {
+        1.0
+    }
+    fn solution(&self) -> &[f64] {
+        &self.solution
+    }
+    fn add_to_free(&mut self, du: &[f64], alpha: f64) {
+        self.u += alpha * du[0];
+        self.solution[0] = self.u;
+    }
+    fn free_values(&self) -> Vec<f64> {
+        vec![self.u]
+    }
+    fn set_free_values(&mut self, values: &[f64]) {
+        self.u = values[0];
+        self.solution[0] = self.u;
+    }
+    fn increment_since_commit(&self) -> Vec<f64> {
+        vec![self.u - self.committed.0]
+    }
+    fn commit(&mut self) {
+        self.committed = (self.u, self.t);
+        self.kappa = self.kappa.max(self.u);
+    }
+    fn rollback(&mut self) {
+        (self.u, self.t) = self.committed;
+        self.solution = [self.u, self.t];
+    }
+    /// The interface formula with v = -bond traction (v pushes apart), g = u.
+    fn damage_dissipation(&self, gradient: &mut [f64]) -> Option<(f64, f64)> {
+        let (uc, _) = self.committed;
+        let vc = -Self::bond_at(uc, self.kappa).0;
+        let (v, k) = (-self.bond.0, -self.bond.1);
+        let (g, gc) = (self.u, uc);
+        // a bond that fails within the increment is charged up to its final opening
+        let failed = v == 0.0 && k == 0.0 && vc != 0.0;
+        if failed {
+            gradient[0] = 0.0;
+            return Some((-0.5 * vc * GF, 0.0));
+        }
+        gradient[0] = 0.5 * (k * gc - vc);
+        Some((0.5 * (v * gc - vc * g), 0.0))
+    }
+}
+
+#[test]
+fn dissipation_control_follows_a_snap_back_and_each_increment_dissipates_what_it_was_asked() {
+    use super::dissipation::{DissipationRequest, solve_dissipation_increment};
+    let mut p = DamageChain::new();
+    let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+    // load control to just before the peak (t = G0 (1 + K_BOND / K_PULL) = 0.11)
+    solve_increment(&mut p, &mut linear, 0.1, &settings(), ReferenceScales::default()).unwrap();
+    p.commit();
+    let mut previous = PreviousIncrement { du: vec![p.u], dt: 0.1 };
+    let energy = 2e-4;
+    let mut states = Vec::new();
+    while p.kappa < GF - 1e-3 {
+        let request = DissipationRequest { t0: p.t, energy, predictor: &previous, rate_step: 1e-7 };
+        let before = DamageChain::dissipated(p.kappa);
+        let (report, increment, dissipated) =
+            solve_dissipation_increment(&mut p, &mut linear, request, &settings(), ReferenceScales::default())
+                .unwrap_or_else(|e| panic!("at u = {}: {e}", p.u));
+        p.commit();
+        // on the path, and the bond's energy grew by what was asked (the envelope is linear)
+        let (s, _) = DamageChain::bond_at(p.u, p.kappa);
+        assert!((p.t - (p.u + s / K_PULL)).abs() < 1e-10, "off the path at u = {}", p.u);
+        let exact = DamageChain::dissipated(p.kappa) - before;
+        // (the trapezoid is exact once the committed state is on the softening line)
+        let on_envelope = !states.is_empty();
+        assert!((dissipated - energy).abs() <= 1e-3 * energy, "{dissipated} for {energy}");
+        assert!(!on_envelope || (exact - dissipated).abs() < 1e-9 * energy, "{dissipated} vs exact {exact}");
+        assert!(report.iterations <= 6, "{report:?}");
+        states.push((p.u, p.t));
+        previous =
+            PreviousIncrement { du: increment.du.iter().map(|x| x * energy / dissipated).collect(), dt: increment.dt };
+    }
+    // past the peak the end of the spring moves back while the bond opens
+    assert!(states.len() >= 5 && states.windows(2).all(|w| w[1].0 > w[0].0 && w[1].1 < w[0].1), "{states:?}");
 }

@@ -5,7 +5,7 @@
 //! that failed.
 
 use super::step::Incrementation;
-use super::{Attempt, PathControl, Solvers, StepWindow};
+use super::{Attempt, Crossing, CrossingOutcome, PathControl, Solvers, StepWindow};
 use crate::model::Model;
 use crate::nonlinear::arc_length::{ArcLengthRequest, PreviousIncrement, solve_arc_length_increment};
 use crate::nonlinear::{IncrementFailure, ReferenceScales};
@@ -26,15 +26,6 @@ pub struct ArcLengthControl {
     pending: Option<PreviousIncrement>,
 }
 
-/// What an accepted arc-length increment means for the path.
-#[derive(Debug, Clone, Copy)]
-pub struct ArcOutcome {
-    /// The load parameter turned.
-    pub limit_point: bool,
-    /// Past the point where load control failed, moving forward: load control resumes.
-    pub resume: bool,
-}
-
 impl ArcLengthControl {
     /// A crossing that starts from the last converged load-controlled increment `previous`:
     /// the first arc length is that increment's length in the (du, c dt) norm with c its
@@ -51,14 +42,12 @@ impl ArcLengthControl {
             pending: None,
         })
     }
+}
 
-    /// The converged attempt was committed at pseudo-time `t_new` after `iterations`.
-    pub fn accept(&mut self, t_new: f64, iterations: usize, incrementation: &Incrementation) -> ArcOutcome {
+impl Crossing for ArcLengthControl {
+    fn accept(&mut self, t_new: f64, iterations: usize, incrementation: &Incrementation) -> CrossingOutcome {
         let increment = self.pending.take().expect("accept follows a converged attempt");
-        let outcome = ArcOutcome {
-            limit_point: increment.dt.signum() != self.previous.dt.signum(),
-            resume: increment.dt > 0.0 && t_new > self.resume_after,
-        };
+        let outcome = CrossingOutcome::of(&self.previous, &increment, t_new, self.resume_after);
         if iterations <= incrementation.easy_iterations {
             self.ds = (self.ds * incrementation.growth_factor).min(self.ds_max);
         }

@@ -1,11 +1,12 @@
-//! The step driver: runs the steps of an analysis with a [`LoadControl`] that hands over to an
-//! [`ArcLengthControl`] at limit points (when continuation is on), commits each converged
-//! increment and notifies the observers. It does no output of its own.
+//! The step driver: runs the steps of an analysis with a [`LoadControl`] that hands over to a
+//! [`Crossing`] at limit points (when continuation is on: an [`ArcLengthControl`] or a
+//! [`DissipationControl`]), commits each converged increment and notifies the observers. It
+//! does no output of its own.
 //!
-//! Hand-over rules: arc length takes over after `after_cuts` consecutive failed attempts, or
+//! Hand-over rules: the crossing takes over after `after_cuts` consecutive failed attempts, or
 //! when a converged load-controlled increment moved more than [`JUMP_RATIO`] times what the
 //! last increment's rate predicts (a silent jump to another branch); it hands back once t moves
-//! forward past the target that failed, or when it would leave its step window.
+//! forward past the target that failed, or when it cannot go on inside its step window.
 //!
 //! Snaps: when neither control can go on (load control cut below its minimum increment, arc
 //! length stalled or unable to start, e.g. a run that starts inside the jump-in range), the
@@ -16,9 +17,10 @@
 //! stops with the reason.
 
 use super::arc_length_control::ArcLengthControl;
+use super::dissipation_control::DissipationControl;
 use super::load_control::LoadControl;
 use super::step::StepPlan;
-use super::{Attempt, PathControl, Solvers, StepWindow};
+use super::{Attempt, Crossing, PathControl, Solvers, StepWindow};
 use crate::error::{CoreError, Result};
 use crate::linear_solver::LinearSolver;
 use crate::model::Model;
@@ -53,7 +55,7 @@ pub const CRAWL_FRACTION: f64 = 1e-2;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Via {
     LoadControl,
-    ArcLength,
+    Crossing,
     /// Pseudo-transient continuation: a snap to a stable state.
     Settling,
 }
@@ -66,13 +68,45 @@ pub struct RunPlan {
     pub units: (String, String),
     pub output_directory: PathBuf,
     pub steps: Vec<StepPlan>,
-    /// Arc-length continuation after this many consecutive cuts (None: off).
-    pub arc_length_after_cuts: Option<usize>,
+    /// How limit points are crossed (None: they are not; load control cuts, then snaps).
+    pub continuation: Option<Continuation>,
     /// Per contribution of the model: kind and viscous-share limit.
     pub interfaces: Vec<InterfaceInfo>,
     /// Set (e.g. by a Ctrl-C handler) to stop the run after the increment in progress: the run
     /// ends with status "interrupted".
     pub interrupt: Option<Arc<AtomicBool>>,
+}
+
+/// Path following at limit points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Continuation {
+    pub method: ContinuationMethod,
+    /// Consecutive cuts after which the crossing takes over.
+    pub after_cuts: usize,
+}
+
+/// The constraint a crossing follows the path on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContinuationMethod {
+    /// [`ArcLengthControl`]: an arc length in (u, t).
+    ArcLength,
+    /// [`DissipationControl`]: the energy damage dissipates per increment.
+    Dissipation,
+}
+
+impl Continuation {
+    /// A crossing from the last converged increment `previous`, handing back past
+    /// `resume_after`; None when that increment did not move.
+    fn start(&self, previous: PreviousIncrement, resume_after: f64) -> Option<Box<dyn Crossing>> {
+        match self.method {
+            ContinuationMethod::ArcLength => {
+                ArcLengthControl::start(previous, resume_after).map(|c| Box::new(c) as Box<dyn Crossing>)
+            }
+            ContinuationMethod::Dissipation => {
+                DissipationControl::start(previous, resume_after).map(|c| Box::new(c) as Box<dyn Crossing>)
+            }
+        }
+    }
 }
 
 /// Why a run ended before its last step did.
@@ -108,6 +142,7 @@ pub fn run_steps(
         law_failures: BTreeMap::new(),
         force_sum: (0.0, 0),
         since_output: 0,
+        largest_displacement: 0.0,
         model,
         plan,
         linear,
@@ -174,8 +209,8 @@ struct Driver<'a> {
     t: f64,
     t_end: f64,
     load: LoadControl,
-    /// An arc-length crossing in progress.
-    crossing: Option<ArcLengthControl>,
+    /// A crossing in progress.
+    crossing: Option<Box<dyn Crossing>>,
     /// The last converged increment (free dofs, dt), kept through cuts to start arc length.
     last_converged: Option<PreviousIncrement>,
     /// Set when arc length had to hand back to load control; cleared by the next commit.
@@ -194,6 +229,8 @@ struct Driver<'a> {
     force_sum: (f64, usize),
     /// Increments since the last field frame.
     since_output: usize,
+    /// The largest displacement norm committed so far (the scale of round-off in increments).
+    largest_displacement: f64,
 }
 
 /// What to do after handling an attempt.
@@ -262,7 +299,7 @@ impl Driver<'_> {
             }
             let scales = self.scales();
             let solvers = Solvers { linear: &mut *self.linear, nonlinear: &mut *self.nonlinear };
-            let via = if self.crossing.is_some() { Via::ArcLength } else { Via::LoadControl };
+            let via = if self.crossing.is_some() { Via::Crossing } else { Via::LoadControl };
             let attempt = match self.crossing.as_mut() {
                 Some(arc) => arc.attempt(self.model, solvers, &window, scales),
                 None => self.load.attempt(self.model, solvers, &window, scales),
@@ -306,11 +343,12 @@ impl Driver<'_> {
             let cut = arc.cut(failure);
             return self.after_cut(si, cut, failure);
         }
-        let wants_arc = self.plan.arc_length_after_cuts.is_some_and(|after| self.cuts_since_commit >= after);
-        if wants_arc && !self.arc_blocked {
+        let continuation = self.plan.continuation.filter(|c| self.cuts_since_commit >= c.after_cuts);
+        if let Some(continuation) = continuation
+            && !self.arc_blocked
+        {
             let resume_after = self.load.first_failed_target.unwrap_or(self.t);
-            self.crossing =
-                self.last_converged.clone().and_then(|previous| ArcLengthControl::start(previous, resume_after));
+            self.crossing = self.last_converged.clone().and_then(|previous| continuation.start(previous, resume_after));
             if self.crossing.is_some() {
                 return Ok(Flow::Continue);
             }
@@ -397,26 +435,28 @@ impl Driver<'_> {
     /// its displacements moved more than JUMP_RATIO times what the last increment's rate
     /// predicts. If so, the increment is rolled back and arc length starts.
     fn jumped(&mut self, target: f64, du: &[f64]) -> bool {
-        if self.plan.arc_length_after_cuts.is_none() || self.arc_blocked {
+        let Some(continuation) = self.plan.continuation.filter(|_| !self.arc_blocked) else {
             return false;
-        }
+        };
         let Some(previous) = self.last_converged.clone().filter(|p| p.dt > 0.0 && target > self.t) else {
             return false;
         };
         let predicted = norm(&previous.du) * (target - self.t) / previous.dt;
-        if !(predicted > 0.0 && norm(du) > JUMP_RATIO * predicted) {
+        // round-off in a state that no longer moves (a separated body) is no jump
+        let noise = self.nonlinear.settings().tol_displacement * self.largest_displacement;
+        if !(predicted > 0.0 && norm(du) > JUMP_RATIO * predicted && norm(du) > noise) {
             return false;
         }
         self.model.rollback();
         self.summary.cut_increments += 1;
         self.cuts_since_commit += 1;
-        self.crossing = ArcLengthControl::start(previous, target);
+        self.crossing = continuation.start(previous, target);
         true
     }
 
     /// A converged attempt: accept it (or detect a jump), commit, record, adapt the increment.
     fn converged(&mut self, si: usize, report: IncrementReport, via: Via) -> Result<Flow> {
-        let by_arc_length = via == Via::ArcLength;
+        let by_arc_length = via == Via::Crossing;
         let step = &self.plan.steps[si];
         let target = self.model.time;
         let (mut limit_point, mut resume) = (false, false);
@@ -453,6 +493,7 @@ impl Driver<'_> {
             self.load.set_increment(target - self.t);
         }
         self.model.commit();
+        self.largest_displacement = self.largest_displacement.max(norm(&self.model.displacement));
         self.t = target;
         self.add_report(&report);
         let context = CommitContext { cuts_since_commit: self.cuts_since_commit, limit_point, by_arc_length };

@@ -1,22 +1,26 @@
 //! Path control: how pseudo-time advances through the steps. [`LoadControl`] prescribes the
 //! next value of the load parameter (cutting failed increments, growing easy ones, landing on
-//! amplitude breakpoints); [`ArcLengthControl`] follows the path through limit points on an
-//! arc-length constraint. Both implement [`PathControl`], so a new constraint (e.g. a
-//! dissipation-based one) is a new implementation. The [`driver`] runs the steps, switches
-//! between the two, and notifies the observers of [`crate::record`].
+//! amplitude breakpoints); the [`Crossing`]s follow the path through limit points on a
+//! constraint: [`ArcLengthControl`] on an arc length, [`DissipationControl`] on the energy
+//! damage dissipates. All implement [`PathControl`], so a new constraint is a new
+//! implementation. The [`driver`] runs the steps, switches between load control and a
+//! crossing, and notifies the observers of [`crate::record`].
 
 mod arc_length_control;
+mod dissipation_control;
 pub mod driver;
 mod load_control;
 pub mod step;
 
 pub use arc_length_control::ArcLengthControl;
-pub use driver::{RunPlan, run_steps};
+pub use dissipation_control::DissipationControl;
+pub use driver::{Continuation, ContinuationMethod, RunPlan, run_steps};
 pub use load_control::LoadControl;
 pub use step::{Incrementation, StepPlan};
 
 use crate::linear_solver::LinearSolver;
 use crate::model::Model;
+use crate::nonlinear::arc_length::PreviousIncrement;
 use crate::nonlinear::{IncrementFailure, IncrementReport, NonlinearSolver, ReferenceScales};
 
 /// Where an increment may go: inside its step, and not across an amplitude breakpoint.
@@ -67,4 +71,29 @@ pub trait PathControl {
     ) -> Attempt;
     /// After a failed attempt: makes the next one smaller, or says why it cannot.
     fn cut(&mut self, failure: &IncrementFailure) -> Result<String, String>;
+}
+
+/// A control that takes over from load control to cross a limit point, and hands back.
+pub trait Crossing: PathControl {
+    /// The converged attempt was committed at pseudo-time `t_new` after `iterations`.
+    fn accept(&mut self, t_new: f64, iterations: usize, incrementation: &Incrementation) -> CrossingOutcome;
+}
+
+/// What an accepted crossing increment means for the path.
+#[derive(Debug, Clone, Copy)]
+pub struct CrossingOutcome {
+    /// The load parameter turned.
+    pub limit_point: bool,
+    /// Past the point where load control failed, moving forward: load control resumes.
+    pub resume: bool,
+}
+
+impl CrossingOutcome {
+    /// The outcome of `increment`, committed at `t_new`, after `previous`.
+    pub fn of(previous: &PreviousIncrement, increment: &PreviousIncrement, t_new: f64, resume_after: f64) -> Self {
+        Self {
+            limit_point: increment.dt.signum() != previous.dt.signum(),
+            resume: increment.dt > 0.0 && t_new > resume_after,
+        }
+    }
 }

@@ -1,5 +1,6 @@
 //! `history.csv`: one row per committed state: step, increment, time, iterations, reactions
-//! per group, plastic dissipation, and each interface's observables.
+//! per boundary group, mean displacements per loaded group, plastic dissipation, and each
+//! interface's observables.
 
 use super::{CommittedIncrement, Observer};
 use crate::element::Kinematics;
@@ -12,11 +13,18 @@ use std::path::Path;
 pub struct HistoryRecorder {
     writer: HistoryWriter,
     reaction_groups: Vec<(String, Vec<usize>)>,
+    displacement_groups: Vec<(String, Vec<usize>)>,
 }
 
 impl HistoryRecorder {
-    /// Creates `path` with the header for `model`; reactions are summed over each group's nodes.
-    pub fn create(path: &Path, model: &Model, reaction_groups: Vec<(String, Vec<usize>)>) -> Result<Self> {
+    /// Creates `path` with the header for `model`; reactions are summed over the nodes of each
+    /// of `reaction_groups`, displacements averaged over those of each of `displacement_groups`.
+    pub fn create(
+        path: &Path,
+        model: &Model,
+        reaction_groups: Vec<(String, Vec<usize>)>,
+        displacement_groups: Vec<(String, Vec<usize>)>,
+    ) -> Result<Self> {
         let dpn = model.dofs_per_node();
         let component = |k: usize| {
             if model.kinematics == Kinematics::Axisymmetric { ["r", "z"][k] } else { ["x", "y", "z"][k] }
@@ -28,13 +36,18 @@ impl HistoryRecorder {
                 columns.push(format!("reaction_{g}_{}", component(k)));
             }
         }
+        for (g, _) in &displacement_groups {
+            for k in 0..dpn {
+                columns.push(format!("displacement_{g}_{}", component(k)));
+            }
+        }
         columns.push("plastic_dissipation".into());
         for c in &model.contributions {
             if let Some(o) = c.observables() {
                 columns.extend(o.columns().into_iter().map(|(name, _)| name.to_string()));
             }
         }
-        Ok(Self { writer: HistoryWriter::create(path, columns)?, reaction_groups })
+        Ok(Self { writer: HistoryWriter::create(path, columns)?, reaction_groups, displacement_groups })
     }
 }
 
@@ -48,6 +61,13 @@ impl Observer for HistoryRecorder {
         ];
         for (_, nodes) in &self.reaction_groups {
             row.extend(model.reaction(nodes).into_iter().map(Value::Real));
+        }
+        let dpn = model.dofs_per_node();
+        for (_, nodes) in &self.displacement_groups {
+            for k in 0..dpn {
+                let sum: f64 = nodes.iter().map(|&n| model.displacement[n * dpn + k]).sum();
+                row.push(Value::Real(sum / nodes.len().max(1) as f64));
+            }
         }
         row.push(Value::Real(model.dissipation()));
         for c in &model.contributions {

@@ -21,8 +21,8 @@ pub struct RunSummary {
     pub final_time: f64,
     pub increments: usize,
     pub cut_increments: usize,
-    /// Increments solved by arc-length continuation, and the limit points (turns of the load
-    /// parameter) they passed.
+    /// Increments solved by path following (arc length or dissipation control; the name is
+    /// the file format's), and the limit points (turns of the load parameter) they passed.
     pub arc_length_increments: usize,
     pub limit_points: usize,
     /// Increments where the path had no nearby equilibrium and the model was settled on a
