@@ -3,10 +3,11 @@
 //! ([`crate::nonlinear::dissipation`]); tau is first the dissipation of a step like the last
 //! one, halves on failure and grows after easy increments. Where nothing damages within
 //! reach of the first increment (the instability is not a crack's, e.g. an adhesive jump of a
-//! reversible law), the crossing goes on as a spherical arc length instead. Later, an
-//! increment that finds nothing damaging asked for more energy than the cracks have left:
-//! tau is quartered, and once it is below [`EXHAUSTED_FRACTION`] of its first value damage
-//! has run its course (the last points have failed) and load control takes over.
+//! reversible law), the crossing goes on as a spherical arc length instead. An increment
+//! that finds nothing damaging asked for more energy than the cracks have left: tau is
+//! quartered, and once it is below [`EXHAUSTED_FRACTION`] of its first value damage has run
+//! its course (the last points have failed) and load control takes over, or, if no increment
+//! had converged yet, the arc length crosses.
 
 use super::arc_length_control::ArcLengthControl;
 use super::step::Incrementation;
@@ -94,37 +95,37 @@ impl PathControl for DissipationControl {
         window: &StepWindow<'_>,
         scales: ReferenceScales,
     ) -> Attempt {
-        if self.fallback.is_none() {
-            match self.energy(model, window.t) {
-                Ok(Some(energy)) => {
-                    let predictor = self.predictor(energy);
-                    let request = DissipationRequest {
-                        t0: window.t,
-                        energy,
-                        predictor: &predictor,
-                        rate_step: 1e-6 * window.t_end,
-                    };
-                    let settings = solvers.nonlinear.settings();
-                    return match solve_dissipation_increment(model, solvers.linear, request, settings, scales) {
-                        Ok((report, increment, dissipated)) => {
-                            if window.excludes(window.t + increment.dt) {
-                                model.rollback();
-                                return Attempt::OutsideWindow;
-                            }
-                            self.pending = Some((increment, dissipated));
-                            Attempt::Converged(report)
-                        }
-                        // damage has run its course: load control goes on
-                        Err(IncrementFailure::NoDissipation)
-                            if self.previous_energy.is_some() && energy < EXHAUSTED_FRACTION * self.energy_initial =>
-                        {
-                            model.rollback();
-                            Attempt::OutsideWindow
-                        }
-                        Err(e) => Attempt::Failed(e),
-                    };
+        let energy = match self.fallback {
+            Some(_) => None,
+            None => match self.energy(model, window.t) {
+                Ok(energy) => energy,
+                Err(e) => return Attempt::Failed(e),
+            },
+        };
+        // (None: the arc-length fallback crosses)
+        if let Some(energy) = energy {
+            let predictor = self.predictor(energy);
+            let request =
+                DissipationRequest { t0: window.t, energy, predictor: &predictor, rate_step: 1e-6 * window.t_end };
+            let settings = solvers.nonlinear.settings();
+            match solve_dissipation_increment(model, &mut *solvers.linear, request, settings, scales) {
+                Ok((report, increment, dissipated)) => {
+                    if window.excludes(window.t + increment.dt) {
+                        model.rollback();
+                        return Attempt::OutsideWindow;
+                    }
+                    self.pending = Some((increment, dissipated));
+                    return Attempt::Converged(report);
                 }
-                Ok(None) => {}
+                Err(IncrementFailure::NoDissipation) if energy < EXHAUSTED_FRACTION * self.energy_initial => {
+                    model.rollback();
+                    if self.previous_energy.is_some() {
+                        // damage has run its course: load control goes on
+                        return Attempt::OutsideWindow;
+                    }
+                    // nothing damaged within reach even of a small step: cross by arc length
+                    self.fallback = ArcLengthControl::start(self.previous.clone(), self.resume_after);
+                }
                 Err(e) => return Attempt::Failed(e),
             }
         }
