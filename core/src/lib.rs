@@ -30,6 +30,7 @@ pub mod problem;
 pub mod quadrature;
 pub mod record;
 pub mod sparse;
+pub mod tangent_sink;
 pub mod vector;
 pub mod voigt;
 

@@ -11,6 +11,7 @@ use crate::error::{CoreError, Result};
 use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::sparse::{NO_SLOT, SparsityPattern};
+use crate::tangent_sink::{BlockSlots, SlotSink, TangentSink};
 use crate::vector::norm;
 use crate::voigt::Stress;
 use rayon::prelude::*;
@@ -199,18 +200,20 @@ impl ElementSet {
 /// Something besides the solid elements that adds forces and stiffness: interfaces, contact.
 pub trait Contribution: Send {
     fn name(&self) -> &str;
-    /// Node lists whose dofs this contribution couples (added to the sparsity pattern).
+    /// The node lists (blocks) whose dofs this contribution couples: they are added to the
+    /// sparsity pattern, and every tangent entry is given within one of them (their slots are
+    /// computed once, at [`Model::finalize`]).
     fn coupled_nodes(&self) -> Vec<Vec<usize>> {
         Vec::new()
     }
     /// Adds this contribution's force to `force` (full dof vector) and, if given, its tangent
-    /// through `add_tangent(global_row_dof, global_col_dof, value)`.
+    /// entries to `tangent`, each as (block of `coupled_nodes`, local index, global dof).
     fn assemble(
         &mut self,
         time: f64,
         displacement: &[f64],
         force: &mut [f64],
-        tangent: Option<&mut dyn FnMut(usize, usize, f64)>,
+        tangent: Option<&mut dyn TangentSink>,
     ) -> Result<()>;
     fn commit(&mut self) {}
     fn rollback(&mut self) {}
@@ -283,6 +286,8 @@ pub struct Model {
     free_index: Vec<usize>,
     free_dofs: Vec<usize>,
     pattern: Option<SparsityPattern>,
+    /// The slots of each contribution's blocks (its `coupled_nodes`), in contribution order.
+    contribution_slots: Vec<BlockSlots>,
     /// Current displacement (all dofs) and the last committed one.
     pub displacement: Vec<f64>,
     displacement_committed: Vec<f64>,
@@ -311,6 +316,7 @@ impl Model {
             free_index: Vec::new(),
             free_dofs: Vec::new(),
             pattern: None,
+            contribution_slots: Vec::new(),
             displacement: vec![0.0; n],
             displacement_committed: vec![0.0; n],
             internal_force: vec![0.0; n],
@@ -394,7 +400,7 @@ impl Model {
         if self.free_dofs.is_empty() {
             return Err(CoreError::Invalid("every degree of freedom is prescribed: nothing to solve".into()));
         }
-        let extra: Vec<Vec<usize>> = self.contributions.iter().flat_map(|c| c.coupled_nodes()).collect();
+        let blocks: Vec<Vec<Vec<usize>>> = self.contributions.iter().map(|c| c.coupled_nodes()).collect();
         let free_index = &self.free_index;
         let dof_of = |node: usize, c: usize| {
             let f = free_index[node * dpn + c];
@@ -404,8 +410,9 @@ impl Model {
             .sets
             .iter()
             .flat_map(|s| s.connectivity.chunks_exact(s.kernel.n_nodes()))
-            .chain(extra.iter().map(|v| v.as_slice()));
+            .chain(blocks.iter().flatten().map(|v| v.as_slice()));
         let pattern = SparsityPattern::from_cells(self.free_dofs.len(), n_nodes, dpn, cells, dof_of);
+        self.contribution_slots = blocks.iter().map(|b| BlockSlots::new(b, dpn, &pattern, dof_of)).collect();
         let mut dofs = Vec::new();
         let mut slots = Vec::new();
         for set in &mut self.sets {
@@ -471,25 +478,14 @@ impl Model {
                 with_tangent.then_some(&mut self.tangent_values[..]),
             )?;
         }
-        // Interfaces and other contributions.
-        let free_index = &self.free_index;
-        let values = &mut self.tangent_values;
-        for contribution in &mut self.contributions {
-            let mut add = |r: usize, c: usize, v: f64| {
-                let (fr, fc) = (free_index[r], free_index[c]);
-                if fr != usize::MAX && fc != usize::MAX {
-                    let slot = pattern.slot(fr, fc);
-                    debug_assert!(slot.is_some(), "a contribution couples free dofs {fr} and {fc} outside the pattern");
-                    if let Some(s) = slot {
-                        values[s] += v;
-                    }
-                }
-            };
+        // Interfaces and other contributions, through their precomputed block slots.
+        for (contribution, blocks) in self.contributions.iter_mut().zip(&self.contribution_slots) {
+            let mut sink = SlotSink { values: &mut self.tangent_values, blocks, pattern, free_index: &self.free_index };
             contribution.assemble(
                 self.time,
                 &self.displacement,
                 &mut self.internal_force,
-                if with_tangent { Some(&mut add) } else { None },
+                if with_tangent { Some(&mut sink) } else { None },
             )?;
         }
         for (k, &g) in self.free_dofs.iter().enumerate() {

@@ -1,16 +1,20 @@
 //! Sparsity pattern built once per topology, and element-to-slot maps so that assembly writes
 //! straight into the value array of the compressed-column matrix (no triplets per iteration).
 
+use std::sync::Arc;
+
 /// Marks a local (row, column) pair that has no slot because one of the dofs is constrained.
 pub const NO_SLOT: u32 = u32::MAX;
 
 /// A square compressed-sparse-column pattern over the free degrees of freedom, holding both
-/// triangles (so symmetric and unsymmetric factorizations can use it).
+/// triangles (so symmetric and unsymmetric factorizations can use it). The index arrays are
+/// shared: a clone (e.g. the one a single-precision factor keeps for its refinement) costs no
+/// memory.
 #[derive(Debug, Clone)]
 pub struct SparsityPattern {
     pub n: usize,
-    pub col_ptr: Vec<usize>,
-    pub row_idx: Vec<usize>,
+    pub col_ptr: Arc<[usize]>,
+    pub row_idx: Arc<[usize]>,
 }
 
 impl SparsityPattern {
@@ -57,7 +61,7 @@ impl SparsityPattern {
             row_idx.extend_from_slice(&column);
             col_ptr.push(row_idx.len());
         }
-        Self { n: n_free, col_ptr, row_idx }
+        Self { n: n_free, col_ptr: col_ptr.into(), row_idx: row_idx.into() }
     }
 
     pub fn nnz(&self) -> usize {
@@ -115,8 +119,8 @@ mod tests {
         let cells: Vec<Vec<usize>> = vec![vec![0, 1], vec![1, 2]];
         let dof = |n: usize, _c: usize| if n == 0 { None } else { Some(n - 1) };
         let p = SparsityPattern::from_cells(2, 3, 1, cells.iter().map(|c| c.as_slice()), dof);
-        assert_eq!(p.col_ptr, vec![0, 2, 4]);
-        assert_eq!(p.row_idx, vec![0, 1, 0, 1]);
+        assert_eq!(p.col_ptr[..], [0, 2, 4]);
+        assert_eq!(p.row_idx[..], [0, 1, 0, 1]);
         let mut slots = vec![];
         p.element_slots(&[None, Some(0)], &mut slots);
         assert_eq!(slots, vec![NO_SLOT, NO_SLOT, NO_SLOT, 0]);

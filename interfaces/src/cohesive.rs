@@ -20,6 +20,7 @@ use stiction_core::mesh::Mesh;
 use stiction_core::model::Contribution;
 use stiction_core::observables::InterfaceObservables;
 use stiction_core::output::vtk::Field;
+use stiction_core::tangent_sink::TangentSink;
 use stiction_elements::FaceIntegrator;
 
 struct Point {
@@ -151,6 +152,7 @@ impl Contribution for CohesiveElements {
         &self.name
     }
 
+    /// One block per point: the nodes of side A, then those of side B.
     fn coupled_nodes(&self) -> Vec<Vec<usize>> {
         self.points.iter().map(|p| p.a.iter().chain(&p.b).copied().collect()).collect()
     }
@@ -160,7 +162,7 @@ impl Contribution for CohesiveElements {
         _time: f64,
         u: &[f64],
         force: &mut [f64],
-        mut tangent: Option<&mut dyn FnMut(usize, usize, f64)>,
+        mut tangent: Option<&mut dyn TangentSink>,
     ) -> Result<(), CoreError> {
         let dpn = self.dpn;
         let (mut total, mut area, mut count) = (0.0, 0.0, 0.0);
@@ -227,6 +229,7 @@ impl Contribution for CohesiveElements {
                         sum
                     })
                 });
+                let n_a = p.a.len();
                 for (k, (&ak, &bk)) in p.a.iter().zip(&p.b).enumerate() {
                     for (l, (&al, &bl)) in p.a.iter().zip(&p.b).enumerate() {
                         let s = p.shape[k] * p.shape[l] * p.weight;
@@ -234,11 +237,14 @@ impl Contribution for CohesiveElements {
                             for d in 0..dpn {
                                 let v = -s * dt[c][d];
                                 if v != 0.0 {
-                                    // force on B (-t) w.r.t. u_B (+) and u_A (-); on A the opposite
-                                    add(bk * dpn + c, bl * dpn + d, v);
-                                    add(bk * dpn + c, al * dpn + d, -v);
-                                    add(ak * dpn + c, bl * dpn + d, -v);
-                                    add(ak * dpn + c, al * dpn + d, v);
+                                    // force on B (-t) w.r.t. u_B (+) and u_A (-); on A the opposite;
+                                    // block i lists the A nodes, then the B nodes
+                                    let (ra, rb) = (k * dpn + c, (n_a + k) * dpn + c);
+                                    let (ca, cb) = (l * dpn + d, (n_a + l) * dpn + d);
+                                    add.add(i, (rb, cb), (bk * dpn + c, bl * dpn + d), v);
+                                    add.add(i, (rb, ca), (bk * dpn + c, al * dpn + d), -v);
+                                    add.add(i, (ra, cb), (ak * dpn + c, bl * dpn + d), -v);
+                                    add.add(i, (ra, ca), (ak * dpn + c, al * dpn + d), v);
                                 }
                             }
                         }

@@ -39,6 +39,7 @@ use stiction_core::mesh::Mesh;
 use stiction_core::model::Contribution;
 use stiction_core::observables::InterfaceObservables;
 use stiction_core::output::vtk::Field;
+use stiction_core::tangent_sink::TangentSink;
 use stiction_elements::FaceIntegrator;
 
 /// Where the flat is and how it moves.
@@ -390,7 +391,7 @@ impl Contribution for RigidFlat {
         time: f64,
         displacement: &[f64],
         force: &mut [f64],
-        mut tangent: Option<&mut dyn FnMut(usize, usize, f64)>,
+        mut tangent: Option<&mut dyn TangentSink>,
     ) -> Result<(), CoreError> {
         let dpn = self.dpn;
         let traction_law = self.law.kind() == LawKind::TractionPerArea;
@@ -439,10 +440,11 @@ impl Contribution for RigidFlat {
                     for (a, &na) in p.nodes.iter().enumerate() {
                         for (b, &nb) in p.nodes.iter().enumerate() {
                             let s = -p.shape[a] * p.shape[b] * slope * p.weight;
-                            for i in 0..dpn {
-                                for j in 0..dpn {
-                                    if n[i] != 0.0 && n[j] != 0.0 {
-                                        add(na * dpn + i, nb * dpn + j, s * n[i] * n[j]);
+                            for k in 0..dpn {
+                                for l in 0..dpn {
+                                    if n[k] != 0.0 && n[l] != 0.0 {
+                                        let local = (a * dpn + k, b * dpn + l);
+                                        add.add(i, local, (na * dpn + k, nb * dpn + l), s * n[k] * n[l]);
                                     }
                                 }
                             }
@@ -524,10 +526,8 @@ impl Contribution for RigidFlat {
     }
 
     /// A footprint spans several faces: its nodes are coupled beyond any one element.
+    /// One block per point: the nodes its force is spread over (a face's, or a footprint's).
     fn coupled_nodes(&self) -> Vec<Vec<usize>> {
-        if self.footprint.is_none() {
-            return Vec::new();
-        }
         self.points.iter().map(|p| p.nodes.clone()).collect()
     }
 

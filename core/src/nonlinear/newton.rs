@@ -80,7 +80,7 @@ pub fn solve_increment(
 }
 
 /// Moves the problem along `du` from the state with residual norm `r_norm` and returns the
-/// step length alpha; the problem is left assembled at u + alpha du (with the tangent when
+/// step length alpha actually taken; the problem is left assembled at u + alpha du (with the tangent when
 /// `tangent_after`).
 ///
 /// The full step is taken when it reduces ||r||; otherwise (with line search on) alpha is
@@ -126,10 +126,10 @@ pub(crate) fn line_search(
         return Err(e);
     }
     if !accepted {
+        // the full step is kept, so the correction the convergence test sees is the full du
         problem.add_to_free(du, 1.0 - alpha);
         problem.assemble(tangent_after)?;
+        return Ok(1.0);
     }
-    // (after a failed search the full step is applied but the last trial alpha is returned:
-    // the correction the next convergence test sees is alpha du, as it always was)
     Ok(alpha)
 }

@@ -20,6 +20,8 @@ pub struct InterfaceSample {
     pub contact_area: f64,
     /// Ohm; infinite without contact; None where not modelled.
     pub resistance: Option<f64>,
+    /// The continuum's plastic dissipation (the whole model's) at this state.
+    pub plastic_dissipation: f64,
 }
 
 /// The key numbers of one load cycle.
@@ -218,7 +220,13 @@ mod tests {
     use super::*;
 
     fn sample(approach: f64, force: f64, resistance: f64) -> InterfaceSample {
-        InterfaceSample { approach, force, contact_area: force.max(0.0), resistance: Some(resistance) }
+        InterfaceSample {
+            approach,
+            force,
+            contact_area: force.max(0.0),
+            resistance: Some(resistance),
+            plastic_dissipation: 0.0,
+        }
     }
 
     /// Two triangle cycles, 0 -> 2 -> -1 -> 2 -> -1, with F = 10 a on loading and F = 10 a - 5

@@ -3,6 +3,7 @@
 //! their typed observables at each committed increment.
 
 use super::cycles::{InterfaceSample, cycles, resistance_hysteresis};
+use super::plastic_drawing::trailing_drawing;
 use super::summary::{Fold, InterfaceSummary};
 use crate::model::Model;
 use crate::observables::InterfaceObservables;
@@ -47,12 +48,14 @@ pub struct InterfaceTracker {
     samples: Vec<Vec<InterfaceSample>>,
 }
 
-fn sample(o: &InterfaceObservables) -> Option<InterfaceSample> {
+/// The state of an interface with a flat, with the model's plastic dissipation then.
+fn sample(o: &InterfaceObservables, plastic_dissipation: f64) -> Option<InterfaceSample> {
     Some(InterfaceSample {
         approach: o.approach?,
         force: o.force,
         contact_area: o.contact_area,
         resistance: o.contact_resistance,
+        plastic_dissipation,
     })
 }
 
@@ -102,7 +105,8 @@ impl InterfaceTracker {
             .collect();
         let n = model.contributions.len();
         let observed: Vec<InterfaceObservables> = (0..n).map(|k| observe(model, k)).collect();
-        let samples = observed.iter().map(|o| sample(o).into_iter().collect()).collect();
+        let plastic = model.dissipation();
+        let samples = observed.iter().map(|o| sample(o, plastic).into_iter().collect()).collect();
         Self { summaries, observed, had_contact: vec![false; n], samples }
     }
 
@@ -122,6 +126,7 @@ impl InterfaceTracker {
     ) -> (Vec<InterfaceEvent>, bool) {
         let mut events = Vec::new();
         let mut separated = false;
+        let plastic = model.dissipation();
         for k in 0..self.summaries.len() {
             let now = observe(model, k);
             let before = self.observed[k];
@@ -130,12 +135,12 @@ impl InterfaceTracker {
                 events.push(e);
             }
             if context.limit_point
-                && let (Some(x), [.., a, b]) = (sample(&now), self.samples[k].as_slice())
+                && let (Some(x), [.., a, b]) = (sample(&now, plastic), self.samples[k].as_slice())
             {
                 self.summaries[k].folds.push(fold_between(model.time, a, b, &x));
             }
             self.had_contact[k] |= now.n_contact > 0;
-            if let Some(x) = sample(&now) {
+            if let Some(x) = sample(&now, plastic) {
                 self.samples[k].push(x);
             }
             self.observed[k] = now;
@@ -157,7 +162,9 @@ impl InterfaceTracker {
     /// A warning when interface `k`, which the step was to unload until separated, is still
     /// attached at its end: points still in contact, or a tensile force still above half the
     /// most tensile one (a long-range law's tail, a few percent of it, is past the pull-off).
-    /// Its most tensile force so far is then not a pull-off.
+    /// Its most tensile force so far is then not a pull-off. When the flat's work over the
+    /// trailing retraction went mostly into plastic flow, the warning says the continuum is
+    /// being drawn out under the attached points ([`trailing_drawing`]).
     pub fn still_attached(&self, model: &Model, k: usize) -> Option<String> {
         let now = &self.observed[k];
         let pull_off = self.summaries[k].pull_off_force;
@@ -165,15 +172,25 @@ impl InterfaceTracker {
         if self.is_separated(k) || (now.n_contact == 0 && !holding) {
             return None;
         }
-        Some(format!(
-            "interface '{}' had not separated by the end of its unloading step (t = {}): force {:.1} at approach {:.4} with {} points in contact, so its most tensile force ({:.1}) is not a pull-off; unload further to reach it",
+        let state = format!(
+            "interface '{}' had not separated by the end of its unloading step (t = {}): force {:.1} at approach {:.4} with {} points in contact, so its most tensile force ({:.1}) is not a pull-off",
             model.contributions[k].name(),
             model.time,
             now.force,
             now.approach.unwrap_or(0.0),
             now.n_contact,
-            self.summaries[k].pull_off_force
-        ))
+            pull_off
+        );
+        Some(match trailing_drawing(&self.samples[k]) {
+            Some(d) if d.is_drawing() => format!(
+                "{state}. It is being drawn out plastically (a cold weld): over the last {:.4} of retraction the flat did {:.4e} of work and the continuum dissipated {:.4e} of it plastically ({:.0}%), so the body under the attached points yields in tension and follows the flat; under perfect plasticity it lets go only when the interface law's own peak is reached. How much the body can carry under a point depends on the contact mesh (a point force's limit load falls as the mesh is refined), the footprint and hardening",
+                d.retraction,
+                d.work,
+                d.plastic_dissipation,
+                100.0 * d.plastic_share()
+            ),
+            _ => format!("{state}; unload further to reach it"),
+        })
     }
 
     /// Maximum and pull-off forces, areas, work and viscous share of interface `k`.
@@ -298,7 +315,7 @@ mod fold_tests {
     use super::*;
 
     fn at(force: f64, approach: f64) -> InterfaceSample {
-        InterfaceSample { approach, force, contact_area: 0.0, resistance: None }
+        InterfaceSample { approach, force, contact_area: 0.0, resistance: None, plastic_dissipation: 0.0 }
     }
 
     /// On a parabolic fold a(F) = 1 - (F - 3)^2 the vertex (F = 3, a = 1) is recovered exactly

@@ -8,6 +8,7 @@ pub mod cycles;
 mod events;
 mod history;
 pub mod interface_tracker;
+pub mod plastic_drawing;
 pub mod summary;
 mod vtk_series;
 
