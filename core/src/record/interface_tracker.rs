@@ -183,7 +183,7 @@ impl InterfaceTracker {
         );
         Some(match trailing_drawing(&self.samples[k]) {
             Some(d) if d.is_drawing() => format!(
-                "{state}. It is being drawn out plastically (a cold weld): over the last {:.4} of retraction the flat did {:.4e} of work and the continuum dissipated {:.4e} of it plastically ({:.0}%), so the body under the attached points yields in tension and follows the flat; under perfect plasticity it lets go only when the interface law's own peak is reached. How much the body can carry under a point depends on the contact mesh (a point force's limit load falls as the mesh is refined), the footprint and hardening",
+                "{state}. The body under the attached points is being drawn out plastically: over the last {:.4} of retraction the flat did {:.4e} of work and the continuum dissipated {:.4e} of it plastically ({:.0}%). A point lets go only when its law's own peak is reached, which under perfect plasticity may take much further retraction or never happen (a cold weld); how much the body can carry under a point depends on the contact mesh (a point force's limit load falls as the mesh is refined), the footprint and hardening",
                 d.retraction,
                 d.work,
                 d.plastic_dissipation,

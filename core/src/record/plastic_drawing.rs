@@ -35,8 +35,9 @@ impl Drawing {
 }
 
 /// The trailing span of `samples` over which the flat retracted (approach not increasing)
-/// while pulling with at least half the final tensile force; None when the last state is not
-/// tensile or the span did not retract.
+/// while pulling with a force within a factor 2 of the final tensile one (the hold, not the
+/// pull-off of the rest of the contact before it); None when the last state is not tensile or
+/// the span did not retract.
 pub fn trailing_drawing(samples: &[InterfaceSample]) -> Option<Drawing> {
     let last = samples.last()?;
     if !(last.force < 0.0) {
@@ -45,7 +46,8 @@ pub fn trailing_drawing(samples: &[InterfaceSample]) -> Option<Drawing> {
     let mut first = samples.len() - 1;
     while first > 0 {
         let (before, after) = (&samples[first - 1], &samples[first]);
-        if !(before.force < 0.0 && before.force.abs() >= 0.5 * last.force.abs() && before.approach >= after.approach) {
+        let (held, tail) = (before.force.abs(), last.force.abs());
+        if !(before.force < 0.0 && held >= 0.5 * tail && held <= 2.0 * tail && before.approach >= after.approach) {
             break;
         }
         first -= 1;
@@ -72,12 +74,14 @@ mod tests {
     }
 
     /// A pull-off followed by a hold at -10 over 2 units of retraction, all of it dissipated
-    /// plastically: the span starts where the force first reached half the final one.
+    /// plastically: the span starts where the force came within a factor 2 of the final one
+    /// (-8), after the pull-off (-25) and before it (-2).
     #[test]
     fn a_hold_whose_work_is_dissipated_plastically_is_drawing() {
         let samples = [
             at(1.0, 5.0, 0.0),
             at(0.0, -2.0, 0.0),
+            at(-0.5, -25.0, 0.0),
             at(-1.0, -8.0, 0.0),
             at(-2.0, -10.0, 9.0),
             at(-3.0, -10.0, 19.0),
