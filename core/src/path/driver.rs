@@ -254,6 +254,7 @@ impl Driver<'_> {
             frame_due: true,
             fraction_done: 0.0,
             description: "initial state".into(),
+            plastic_dissipation: self.model.dissipation(),
         };
         // the interfaces' records start from the committed initial state
         self.tracker = InterfaceTracker::new(self.model, &self.plan.interfaces);
@@ -496,7 +497,13 @@ impl Driver<'_> {
         self.largest_displacement = self.largest_displacement.max(norm(&self.model.displacement));
         self.t = target;
         self.add_report(&report);
-        let context = CommitContext { cuts_since_commit: self.cuts_since_commit, limit_point, by_arc_length };
+        let plastic_dissipation = self.model.dissipation();
+        let context = CommitContext {
+            cuts_since_commit: self.cuts_since_commit,
+            limit_point,
+            by_arc_length,
+            plastic_dissipation,
+        };
         let (events, separated) = self.tracker.update(self.model, context, step.until_separated);
         self.cuts_since_commit = 0;
         self.since_output += 1;
@@ -505,7 +512,7 @@ impl Driver<'_> {
         if frame_due {
             self.since_output = 0;
         }
-        self.notify(si, &report, frame_due, &events)?;
+        self.notify(si, &report, frame_due, plastic_dissipation, &events)?;
         if report.iterations <= step.incrementation.easy_iterations && self.crossing.is_none() && !resume {
             self.load.grow();
         }
@@ -528,6 +535,7 @@ impl Driver<'_> {
         si: usize,
         report: &IncrementReport,
         frame_due: bool,
+        plastic_dissipation: f64,
         events: &[crate::record::InterfaceEvent],
     ) -> Result<()> {
         let last = report.residual_norms.last().copied().unwrap_or(0.0);
@@ -541,6 +549,7 @@ impl Driver<'_> {
                 "{}: t = {:.4} dt = {:.2e}, {} Newton its, |r| = {last:.2e}",
                 self.plan.steps[si].name, self.t, self.load.dt, report.iterations
             ),
+            plastic_dissipation,
         };
         for o in self.observers.iter_mut() {
             o.committed(self.model, &committed)?;

@@ -69,7 +69,7 @@ impl Observer for HistoryRecorder {
                 row.push(Value::Real(sum / nodes.len().max(1) as f64));
             }
         }
-        row.push(Value::Real(model.dissipation()));
+        row.push(Value::Real(increment.plastic_dissipation));
         for c in &model.contributions {
             if let Some(o) = c.observables() {
                 row.extend(o.columns().into_iter().map(|(_, v)| v));

@@ -31,6 +31,8 @@ pub struct CommitContext {
     /// The load parameter turned (arc length passed a limit point).
     pub limit_point: bool,
     pub by_arc_length: bool,
+    /// The continuum's plastic dissipation at the committed state.
+    pub plastic_dissipation: f64,
 }
 
 /// What an interface needs besides its observables: its kind and viscous-share limit.
@@ -126,7 +128,7 @@ impl InterfaceTracker {
     ) -> (Vec<InterfaceEvent>, bool) {
         let mut events = Vec::new();
         let mut separated = false;
-        let plastic = model.dissipation();
+        let plastic = context.plastic_dissipation;
         for k in 0..self.summaries.len() {
             let now = observe(model, k);
             let before = self.observed[k];

@@ -37,6 +37,9 @@ pub struct CommittedIncrement {
     pub fraction_done: f64,
     /// A one-line description of the increment for progress displays.
     pub description: String,
+    /// The continuum's plastic dissipation at this state ([`Model::dissipation`]), integrated
+    /// once per commit for every observer.
+    pub plastic_dissipation: f64,
 }
 
 /// Something that records the run.
