@@ -92,8 +92,9 @@ def _section_view(body, time, is_3d, field):
     return view
 
 
-def _contact_view(body, points, time, is_3d):
-    """The contact region from the flat: the body's surface by von Mises, points as glyphs."""
+def _contact_view(body, points, time, is_3d, glyph_field=None):
+    """The contact region from the flat: the body's surface by von Mises, points as glyphs
+    coloured by `glyph_field` (default: their force, or traction)."""
     view = CreateView("RenderView")
     view.ViewSize = [900, 800]
     view.ViewTime = time
@@ -110,7 +111,7 @@ def _contact_view(body, points, time, is_3d):
         reader = PVDReader(FileName=p)
         reader.UpdatePipeline(time)
         names = [reader.PointData.GetArray(i).Name for i in range(len(reader.PointData))]
-        field = "force" if "force" in names else "traction"
+        field = glyph_field or ("force" if "force" in names else "traction")
         glyphs = Glyph(Input=reader, GlyphType="Sphere")
         glyphs.ScaleArray = ["POINTS", "No scale array"]
         glyphs.ScaleFactor = 0.025 * ZOOM
@@ -144,6 +145,11 @@ def build(out, name=None):
         views["equivalent_plastic_strain"] = _section_view(body, time, is_3d, "equivalent_plastic_strain")
     if point_files:
         views["contact"] = _contact_view(body, point_files, time, is_3d)
+        first = PVDReader(FileName=point_files[0])
+        first.UpdatePipeline(time)
+        if "footprint_indentation" in [first.PointData.GetArray(i).Name for i in range(len(first.PointData))]:
+            # the local plastic indentation under each footprint (a footprint correction)
+            views["footprint_indentation"] = _contact_view(body, point_files, time, is_3d, "footprint_indentation")
     layout = CreateLayout("Stiction " + os.path.basename(body_file)[:-4])
     for view in views.values():
         AssignViewToLayout(view=view, layout=layout)

@@ -5,12 +5,16 @@ are built by `contact_views.py`, beside this script):
   the axial section, zoomed on the contact zone (the 250 nm around the pole);
 - view_contact.png (if the run has interface points): the contact region seen from the flat, the
   body coloured by von Mises stress, the asperities as spheres coloured by their force;
+- view_footprint_indentation.png (with a footprint correction): the same, the asperities
+  coloured by the local plastic indentation under their footprints (the continuum's flow below
+  the mesh scale);
 - contact_views.pvsm: the same views in one layout; open it with
   `paraview --state OUTPUT_DIR/contact_views.pvsm`.
 All at the frame of maximum force (from history.csv; the last frame without one). Units as in
 the case.
 
-Usage:  xvfb-run -a pvbatch scripts/render_views.py OUTPUT_DIR [CASE_NAME]
+Usage:  xvfb-run -a -s "-screen 0 1600x1200x24" pvbatch scripts/render_views.py OUTPUT_DIR [CASE_NAME]
+(a 24-bit screen: with xvfb-run's default screen the render window may fail to open)
 """
 import os
 import sys

@@ -229,6 +229,12 @@ pub trait Contribution: Send {
     fn damage_dissipation(&self, _gradient: &mut [f64]) -> Option<(f64, f64)> {
         None
     }
+    /// Plastic work dissipated at the committed state by the continuum below the mesh scale
+    /// that this contribution models (e.g. the local flow under asperity footprints), counted
+    /// with the elements' plastic dissipation.
+    fn plastic_dissipation(&self) -> f64 {
+        0.0
+    }
     /// Amplitudes this contribution follows (their breakpoints are landed on exactly).
     fn amplitudes(&self) -> Vec<Arc<Amplitude>> {
         Vec::new()
@@ -582,9 +588,10 @@ impl Model {
     }
 
     /// Total plastic (or other material) dissipation at the committed state:
-    /// sum over points of D(state) * point volume.
+    /// sum over points of D(state) * point volume, plus what contributions dissipate
+    /// plastically below the mesh scale (footprint corrections).
     pub fn dissipation(&self) -> f64 {
-        let mut total = 0.0;
+        let mut total: f64 = self.contributions.iter().map(|c| c.plastic_dissipation()).sum();
         let mut vols = Vec::new();
         for set in &self.sets {
             let nq = set.kernel.n_points();

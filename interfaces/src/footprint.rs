@@ -50,7 +50,7 @@ pub struct Footprint {
 }
 
 /// Area of the triangle of a face's first three (corner) nodes.
-fn corner_area(locator: &SurfaceLocator, hit: &SurfacePoint) -> f64 {
+pub(crate) fn corner_area(locator: &SurfaceLocator, hit: &SurfacePoint) -> f64 {
     let x = |a: usize| locator.node(hit.nodes[a]);
     let (a, b, c) = (x(0), x(1), x(2));
     let (e1, e2) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);

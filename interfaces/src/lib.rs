@@ -13,9 +13,11 @@ pub mod cohesive;
 pub mod contact_resistance;
 pub mod damage_dissipation;
 pub mod footprint;
+pub mod local_footprint;
 pub mod mesh_split;
 pub mod plugin;
 pub mod point_law;
+pub mod point_placement;
 pub mod rigid_flat;
 pub mod surface_locator;
 

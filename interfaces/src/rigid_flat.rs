@@ -27,9 +27,8 @@
 
 use crate::contact_resistance::{ContactSpot, ResistanceModel};
 use crate::damage_dissipation::{PointState, damages_secantly, point_dissipation};
-use crate::footprint::locate_footprint;
 use crate::point_law::{evaluate_point, initial_states};
-use crate::surface_locator::SurfaceLocator;
+use crate::point_placement::place_points;
 use std::sync::Arc;
 use stiction_core::CoreError;
 use stiction_core::amplitude::Amplitude;
@@ -112,6 +111,9 @@ pub struct RigidFlat {
     footprint: Option<FootprintResolution>,
     /// The law damages with secant unloading ([`crate::damage_dissipation::damages_secantly`]).
     damages: bool,
+    /// The state index of the footprints' slider work, when the law is corrected for its
+    /// footprint ([`crate::local_footprint`]).
+    slider_work_state: Option<usize>,
 }
 
 /// How finely the mesh resolves the points' footprints.
@@ -232,64 +234,19 @@ impl RigidFlat {
             return Err(CoreError::Invalid(format!("interface '{}': no points ({source})", spec.name)));
         }
         let normal = unit_normal(&spec, kinematics)?;
-        let group = mesh.group(&spec.surface)?;
-        let locator = SurfaceLocator::new(mesh, group, normal)?;
-        // In-plane origin: the lowest node of the surface (the pole).
-        let nodes = mesh.group_nodes(group);
-        let pole = nodes
-            .iter()
-            .map(|&n| mesh.nodes[n])
-            .min_by(|a, b| {
-                let (la, lb) =
-                    ((0..3).map(|k| a[k] * normal[k]).sum::<f64>(), (0..3).map(|k| b[k] * normal[k]).sum::<f64>());
-                la.total_cmp(&lb)
+        let (placed, pole_level) =
+            place_points(mesh, &spec.name, &spec.surface, normal, discrete, source, |_| footprint_area)?;
+        let face_areas: Vec<f64> = placed.iter().map(|p| p.face_area).collect();
+        let points = placed
+            .into_iter()
+            .map(|p| InterfacePoint {
+                nodes: p.nodes,
+                shape: p.weights,
+                weight: 1.0,
+                level: p.level,
+                position: p.position,
             })
-            .expect("a surface group has nodes");
-        let (e1, e2) = plane_basis(normal);
-        let pole_level: f64 = (0..3).map(|k| pole[k] * normal[k]).sum();
-        let mut points = Vec::with_capacity(discrete.len());
-        let mut face_areas = Vec::new();
-        for (i, d) in discrete.iter().enumerate() {
-            // start the ray well on the flat's side of the body
-            let start: [f64; 3] = std::array::from_fn(|k| {
-                pole[k] + d.in_plane[0] * e1[k] + d.in_plane[1] * e2[k] - 10.0 * normal[k] * (1.0 + pole_level.abs())
-            });
-            let outside = || {
-                CoreError::Invalid(format!(
-                    "interface '{}': point {} of {source} at in-plane ({:.4}, {:.4}){} is outside surface '{}'",
-                    spec.name,
-                    i + 1,
-                    d.in_plane[0],
-                    d.in_plane[1],
-                    if footprint_area > 0.0 { " or part of its footprint" } else { "" },
-                    spec.surface
-                ))
-            };
-            if !(d.height >= 0.0 && d.height.is_finite()) {
-                return Err(CoreError::Invalid(format!(
-                    "interface '{}': point {} of {source} has height {}",
-                    spec.name,
-                    i + 1,
-                    d.height
-                )));
-            }
-            let point = if footprint_area > 0.0 {
-                let f = locate_footprint(&locator, start, (e1, e2), normal, footprint_area).ok_or_else(outside)?;
-                face_areas.push(f.face_area);
-                InterfacePoint {
-                    nodes: f.nodes,
-                    shape: f.weights,
-                    weight: 1.0,
-                    level: f.level - d.height,
-                    position: f.center.position,
-                }
-            } else {
-                let hit = locator.locate(start).ok_or_else(outside)?;
-                let level = (0..3).map(|k| hit.position[k] * normal[k]).sum::<f64>() - d.height;
-                InterfacePoint { nodes: hit.nodes, shape: hit.shape, weight: 1.0, level, position: hit.position }
-            };
-            points.push(point);
-        }
+            .collect();
         let mean_height = discrete.iter().map(|d| d.height).sum::<f64>() / discrete.len() as f64;
         let mut flat = Self::assemble_new(spec, kinematics, law, normal, points, pole_level - mean_height)?;
         if footprint_area > 0.0 {
@@ -340,8 +297,32 @@ impl RigidFlat {
             resistance_committed: f64::INFINITY,
             footprint: None,
             damages: damages_secantly(law.as_ref()),
+            slider_work_state: law.state_names().iter().position(|n| n == crate::local_footprint::PLASTIC_WORK_STATE),
             law,
         })
+    }
+
+    /// Sets each point's initial state (committed and trial): `f(point, state)` may overwrite
+    /// what the law initialised, e.g. a per-point parameter the law keeps as a state variable.
+    pub fn set_point_states(&mut self, mut f: impl FnMut(usize, &mut [f64])) {
+        let ns = self.law.n_state();
+        if ns == 0 {
+            return;
+        }
+        for (i, state) in self.state_committed.chunks_exact_mut(ns).enumerate() {
+            f(i, state);
+        }
+        self.state_trial.copy_from_slice(&self.state_committed);
+    }
+
+    /// Each point's nodes and their weights in its displacement (shape functions or footprint).
+    pub fn point_weights(&self) -> impl Iterator<Item = (&[usize], &[f64])> {
+        self.points.iter().map(|p| (&p.nodes[..], &p.shape[..]))
+    }
+
+    /// Unit normal from the flat toward the body.
+    pub fn normal(&self) -> [f64; 3] {
+        self.normal
     }
 
     /// Number of interface points (quadrature points or discrete points).
@@ -497,6 +478,15 @@ impl Contribution for RigidFlat {
         Some((energy, rate))
     }
 
+    /// The committed plastic work of the footprints' local sliders, when the law keeps it
+    /// (a state named `footprint_plastic_work`, see [`crate::local_footprint`]).
+    fn plastic_dissipation(&self) -> f64 {
+        match self.slider_work_state {
+            Some(k) => self.state_committed.chunks_exact(self.law.n_state()).map(|s| s[k]).sum(),
+            None => 0.0,
+        }
+    }
+
     fn commit(&mut self) {
         self.state_committed.copy_from_slice(&self.state_trial);
         self.gap_committed.clone_from(&self.gap);
@@ -533,8 +523,8 @@ impl Contribution for RigidFlat {
 
     fn warnings(&self) -> Vec<String> {
         match self.footprint {
-            Some(f) if f.mean_face_area > f.footprint_area => vec![format!(
-                "interface '{}': the surface faces under the points (mean area {:.3}) are {:.1} times the footprint ({:.3}): the footprint is not resolved and acts close to a point force spread over a face; refine the contact mesh to faces no larger than the footprint for a mesh-converged continuum response",
+            Some(f) if f.mean_face_area > f.footprint_area && self.slider_work_state.is_none() => vec![format!(
+                "interface '{}': the surface faces under the points (mean area {:.3}) are {:.1} times the footprint ({:.3}): the footprint is not resolved and acts close to a point force spread over a face; refine the contact mesh to faces no larger than the footprint for a mesh-converged continuum response, or give the points a footprint_correction",
                 self.name,
                 f.mean_face_area,
                 f.mean_face_area / f.footprint_area,

@@ -1,6 +1,7 @@
 //! Interfaces: zero-thickness cohesive elements on interior surfaces (the mesh is split first)
 //! and rigid flats against a body surface or at discrete points; each with its interface law.
 
+use super::footprint_correction;
 use super::mesh::mean_edge_length;
 use super::points::discrete_points;
 use crate::case::{InterfaceSpec, LoadedCase};
@@ -73,17 +74,27 @@ pub struct InterfaceContext<'a> {
     pub splits: &'a [Split],
     /// Largest stiffness scale of the materials (penalty defaults).
     pub modulus: f64,
+    /// The body's factored elastic stiffness, when a footprint correction computes its
+    /// compliance.
+    pub flexibility: Option<&'a std::cell::RefCell<super::footprint_correction::ElasticFlexibility>>,
+}
+
+/// What the interfaces of a case are built into.
+#[derive(Default)]
+pub struct BuiltInterfaces {
+    pub contributions: Vec<Box<dyn Contribution>>,
+    /// Discrete point layouts by interface name.
+    pub layouts: Vec<(String, Vec<DiscretePoint>)>,
+    /// The footprint compliances computed (interfaces with `points.footprint_correction`).
+    pub footprint_compliances: Vec<footprint_correction::CompliancesSet>,
 }
 
 /// The contributions of the case's interfaces, and the discrete point layouts by interface.
-pub fn build_interfaces(
-    case: &LoadedCase,
-    ctx: &InterfaceContext<'_>,
-) -> Result<(Vec<Box<dyn Contribution>>, Vec<(String, Vec<DiscretePoint>)>)> {
+pub fn build_interfaces(case: &LoadedCase, ctx: &InterfaceContext<'_>) -> Result<BuiltInterfaces> {
     let c = &case.case;
     let plugin_dirs: Vec<PathBuf> = c.plugin_path.iter().map(|p| case.base_dir().join(p)).collect();
     let registry = LawRegistry::new(&plugin_dirs);
-    let (mut contributions, mut layouts) = (Vec::new(), Vec::new());
+    let mut built = BuiltInterfaces::default();
     let mut laws = Vec::new();
     for (i, spec) in c.interfaces.iter().enumerate() {
         let key = format!("interfaces[{i}]");
@@ -103,11 +114,12 @@ pub fn build_interfaces(
             .map_err(|m| case.error(format!("{key}.law"), m))?;
         laws.push(law.clone());
         if spec.kind == "cohesive" {
-            contributions.push(cohesive(case, &key, i, spec, ctx, law, face_size)?);
+            built.contributions.push(cohesive(case, &key, i, spec, ctx, law, face_size)?);
         } else {
-            let (flat, layout) = rigid_flat(case, &key, spec, ctx, law)?;
-            contributions.push(flat);
-            layouts.extend(layout.map(|l| (spec.name.clone(), l)));
+            let (flat, layout, compliances) = rigid_flat(case, &key, spec, ctx, law)?;
+            built.contributions.push(flat);
+            built.layouts.extend(layout.map(|l| (spec.name.clone(), l)));
+            built.footprint_compliances.extend(compliances);
         }
     }
     let dissipation = c.solver.continuation == crate::case::ContinuationSpec::Dissipation;
@@ -121,7 +133,7 @@ pub fn build_interfaces(
             ),
         ));
     }
-    Ok((contributions, layouts))
+    Ok(built)
 }
 
 /// Zero-thickness cohesive elements of interface `i` on its split.
@@ -170,14 +182,15 @@ fn cohesive(
     Ok(Box::new(elements))
 }
 
-/// A rigid flat against the interface's surface, or at its discrete points (returned too).
+/// A rigid flat against the interface's surface, or at its discrete points (returned too, with
+/// the footprint compliances computed for them).
 fn rigid_flat(
     case: &LoadedCase,
     key: &str,
     spec: &InterfaceSpec,
     ctx: &InterfaceContext<'_>,
     law: Arc<dyn InterfaceLaw>,
-) -> Result<(Box<dyn Contribution>, Option<Vec<DiscretePoint>>)> {
+) -> Result<FlatAndLayout> {
     let dpn = ctx.kin.dofs_per_node();
     let normal = match (&spec.normal, ctx.kin) {
         (None, Kinematics::Solid3D) => [0.0, 0.0, 1.0],
@@ -212,11 +225,19 @@ fn rigid_flat(
             }
         },
     };
-    let (flat, layout) = match &spec.points {
-        None => (stiction_interfaces::RigidFlat::over_surface(ctx.mesh, ctx.kin, flat_spec, law), None),
+    let (flat, layout, compliances) = match &spec.points {
+        None => (stiction_interfaces::RigidFlat::over_surface(ctx.mesh, ctx.kin, flat_spec, law), None, None),
         Some(points) => {
             let (list, source) = discrete_points(case, &format!("{key}.points"), points)?;
-            let flat = stiction_interfaces::RigidFlat::at_points(
+            let correction_key = format!("{key}.points.footprint_correction");
+            let (n_inner_state, law) = match &points.footprint_correction {
+                None => (law.n_state(), law),
+                Some(c) => (
+                    law.n_state(),
+                    footprint_correction::corrected_law(case, &correction_key, c, points.footprint_area, law)?,
+                ),
+            };
+            let mut flat = stiction_interfaces::RigidFlat::at_points(
                 ctx.mesh,
                 ctx.kin,
                 flat_spec,
@@ -224,9 +245,31 @@ fn rigid_flat(
                 &list,
                 &source,
                 points.footprint_area,
-            );
-            (flat, Some(list))
+            )
+            .map_err(|e| case.error(key, e.to_string()))?;
+            let computed = points.footprint_correction.as_ref().is_some_and(|c| c.compliance.is_none());
+            let mut compliances = None;
+            if let (true, Some(flexibility)) = (computed, ctx.flexibility) {
+                let set = footprint_correction::set_compliances(
+                    case,
+                    &correction_key,
+                    &mut flat,
+                    (ctx.mesh, &spec.surface),
+                    &list,
+                    points.footprint_area,
+                    n_inner_state,
+                    &mut flexibility.borrow_mut(),
+                )?;
+                eprintln!(
+                    "interface '{}': footprint compliance (length per force): the mesh gives {:.3e}, the correction adds {:.3e} (min {:.3e}, max {:.3e}; medians over the points)",
+                    spec.name, set.mesh_median, set.median, set.min, set.max
+                );
+                compliances = Some(set);
+            }
+            (Ok(flat), Some(list), compliances)
         }
     };
-    Ok((Box::new(flat.map_err(|e| case.error(key, e.to_string()))?), layout))
+    Ok((Box::new(flat.map_err(|e| case.error(key, e.to_string()))?), layout, compliances))
 }
+
+type FlatAndLayout = (Box<dyn Contribution>, Option<Vec<DiscretePoint>>, Option<footprint_correction::CompliancesSet>);

@@ -5,6 +5,7 @@
 
 mod amplitudes;
 pub mod boundaries;
+pub mod footprint_correction;
 pub mod interfaces;
 pub mod loads;
 pub mod mesh;
@@ -35,6 +36,8 @@ pub struct BuiltModel {
     pub load_groups: Vec<(String, Vec<usize>)>,
     /// Discrete point layouts per interface name (written to the output as CSV).
     pub layouts: Vec<(String, Vec<stiction_interfaces::DiscretePoint>)>,
+    /// The footprint compliances computed by interfaces with a footprint correction.
+    pub footprint_compliances: Vec<footprint_correction::CompliancesSet>,
     pub mesh_path: PathBuf,
     /// The steps as the driver runs them.
     pub steps: Vec<StepPlan>,
@@ -66,15 +69,30 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
     let amplitudes = amplitudes::Amplitudes::new(case)?;
     let reaction_groups = boundaries::add_boundaries(case, &mesh, kin, &amplitudes, &mut model)?;
     let load_groups = loads::add_loads(case, &mesh, kin, &amplitudes, &mut model)?;
+    let computes_compliance = case.case.interfaces.iter().any(|i| {
+        i.points.as_ref().and_then(|p| p.footprint_correction.as_ref()).is_some_and(|c| c.compliance.is_none())
+    });
+    let flexibility = if computes_compliance {
+        Some(std::cell::RefCell::new(footprint_correction::ElasticFlexibility::new(
+            case,
+            &mesh,
+            kin,
+            &materials,
+            &amplitudes,
+        )?))
+    } else {
+        None
+    };
     let context = interfaces::InterfaceContext {
         mesh: &mesh,
         kin,
         amplitudes: &amplitudes,
         splits: &splits,
         modulus: materials.values().map(|m| m.stiffness_scale()).fold(0.0, f64::max),
+        flexibility: flexibility.as_ref(),
     };
-    let (contributions, layouts) = interfaces::build_interfaces(case, &context)?;
-    model.contributions = contributions;
+    let built_interfaces = interfaces::build_interfaces(case, &context)?;
+    model.contributions = built_interfaces.contributions;
     model.finalize().map_err(|e| StictionError::Case { path: case.path.clone(), message: e.to_string() })?;
     let interfaces = model
         .contributions
@@ -95,7 +113,8 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
         model,
         reaction_groups,
         load_groups,
-        layouts,
+        layouts: built_interfaces.layouts,
+        footprint_compliances: built_interfaces.footprint_compliances,
         mesh_path,
     })
 }

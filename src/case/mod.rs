@@ -296,6 +296,25 @@ pub struct PointsSpec {
     /// a point force, as for springs).
     #[serde(default)]
     pub footprint_area: f64,
+    /// The footprint's own response below the mesh scale, in series with each point's law (for
+    /// meshes coarser than the footprint; needs `footprint_area`): see
+    /// `stiction_interfaces::local_footprint`.
+    pub footprint_correction: Option<FootprintCorrectionSpec>,
+}
+
+/// The local correction of a footprint the mesh does not resolve: an elastic compliance and a
+/// rigid-plastic slider in series with the law.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FootprintCorrectionSpec {
+    /// Length per force. Absent: computed per point, as the half-space compliance of the
+    /// footprint's disc minus what the mesh gives it (an elastic solve of the body, once).
+    pub compliance: Option<f64>,
+    /// Force at which the continuum under a footprint flows. Absent: the limit pressure of a
+    /// disc on a von Mises half-space, 2.99 Y (`cases/validation/disc-limit-axisym.toml`), times
+    /// `footprint_area`, Y the yield stress of the body's material (none for a linear-elastic
+    /// body).
+    pub limit_force: Option<f64>,
 }
 
 fn default_seed() -> u64 {

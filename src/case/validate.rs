@@ -196,6 +196,23 @@ fn points(case: &LoadedCase, key: &str, p: &super::PointsSpec) -> Result<()> {
             return Err(case.error(format!("{key}.{k}"), format!("must be a finite number >= 0, got {v}")));
         }
     }
+    if let Some(c) = &p.footprint_correction {
+        if !(p.footprint_area > 0.0) {
+            return Err(case.error(
+                format!("{key}.footprint_correction"),
+                "corrects a footprint the mesh does not resolve: give footprint_area (> 0) too",
+            ));
+        }
+        if let Some(v) = c.compliance.filter(|v| !(v.is_finite() && *v >= 0.0)) {
+            return Err(case.error(
+                format!("{key}.footprint_correction.compliance"),
+                format!("must be a finite number >= 0, got {v}"),
+            ));
+        }
+        if let Some(v) = c.limit_force.filter(|v| !(*v > 0.0)) {
+            return Err(case.error(format!("{key}.footprint_correction.limit_force"), format!("must be > 0, got {v}")));
+        }
+    }
     Ok(())
 }
 

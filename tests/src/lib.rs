@@ -43,6 +43,16 @@ pub fn run_case(relative: &str, sets: &[&str], label: &str) -> (BuiltModel, RunS
     (built, summary)
 }
 
+/// A points file with one asperity at the pole (x, y = 0, height 2.786 nm, the Ru cases'),
+/// written under `target/test-out/<dir>/`.
+pub fn one_asperity_at_the_pole(dir: &str) -> PathBuf {
+    let dir = workspace_root().join("target").join("test-out").join(dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let points = dir.join("one-asperity.csv");
+    std::fs::write(&points, "x,y,height\n0.0,0.0,2.786\n").unwrap();
+    points
+}
+
 /// The named columns of a run's history.csv, one vector per row (the initial state included).
 pub fn history_columns(dir: &std::path::Path, names: &[&str]) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(dir.join("history.csv")).unwrap();

@@ -134,3 +134,27 @@ fn dissipation_control_without_a_damage_law_is_refused() {
         "{msg}"
     );
 }
+
+#[test]
+fn a_footprint_correction_needs_a_footprint_and_a_perfectly_plastic_body_for_its_default_limit() {
+    let path = workspace_root().join("cases/ru-rough-sphere/rough-w6-quick.toml");
+    let (msg, code) =
+        failure(&path, &["interfaces.0.points.footprint_area=0.0", "interfaces.0.points.footprint_correction={}"]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("interfaces[0].points.footprint_correction") && msg.contains("footprint_area"), "{msg}");
+    let (msg, code) = failure(
+        &path,
+        &[
+            "interfaces.0.points.footprint_area=12.2",
+            "interfaces.0.points.footprint_correction={ compliance = 0.0 }",
+            "materials.ru.isotropic_hardening=10.0",
+        ],
+    );
+    assert_eq!(code, 2);
+    assert!(msg.contains("footprint_correction.limit_force") && msg.contains("hardens"), "{msg}");
+    let (msg, _) = failure(
+        &path,
+        &["interfaces.0.points.footprint_area=12.2", "interfaces.0.points.footprint_correction={ limit_force = -1.0 }"],
+    );
+    assert!(msg.contains("footprint_correction.limit_force") && msg.contains("> 0"), "{msg}");
+}

@@ -10,14 +10,11 @@
 //!   both non-negative while the force holds).
 
 use stiction::run::RunSummary;
-use stiction_tests::{history_columns, run_case, workspace_root};
+use stiction_tests::{history_columns, one_asperity_at_the_pole, run_case};
 
 /// Runs the asperity at the pole with yield stress `yield_stress` (GPa).
 fn pull_one_asperity(yield_stress: f64, label: &str) -> RunSummary {
-    let dir = workspace_root().join("target").join("test-out").join("cold-weld-input");
-    std::fs::create_dir_all(&dir).unwrap();
-    let points = dir.join("one-asperity.csv");
-    std::fs::write(&points, "x,y,height\n0.0,0.0,2.786\n").unwrap();
+    let points = one_asperity_at_the_pole("cold-weld-input");
     let (_, summary) = run_case(
         "cases/ru-rough-sphere/rough-w6-quick.toml",
         &[

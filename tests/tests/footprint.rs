@@ -6,24 +6,15 @@
 //! A point force has no finite compliance (u ~ 1/r under it): with footprint 0 the compliance
 //! grows as the mesh is refined, with a footprint it converges to the closed form.
 
-use stiction_tests::{build_case, run_case, workspace_root};
+use stiction_tests::{build_case, one_asperity_at_the_pole, run_case};
 
 const E: f64 = 410.0;
 const NU: f64 = 0.3;
 
-/// The one-asperity input file.
-fn one_asperity() -> std::path::PathBuf {
-    let dir = workspace_root().join("target").join("test-out").join("footprint-input");
-    std::fs::create_dir_all(&dir).unwrap();
-    let points = dir.join("one-asperity.csv");
-    std::fs::write(&points, "x,y,height\n0.0,0.0,2.786\n").unwrap();
-    points
-}
-
 /// The compliance u_bar / F of one asperity at the pole after a short loading, on the quick
 /// hemisphere mesh with `h_contact`, for a footprint of `area` (0: a point force).
 fn compliance(h_contact: f64, area: f64, label: &str) -> f64 {
-    let points = one_asperity();
+    let points = one_asperity_at_the_pole("footprint-input");
     let (built, summary) = run_case(
         "cases/ru-rough-sphere/rough-w6-quick.toml",
         &[
@@ -76,7 +67,7 @@ fn a_resolved_footprint_has_the_half_space_compliance_and_a_point_force_does_not
 /// several faces) against central differences of its own forces, over every coupled dof.
 #[test]
 fn the_footprint_tangent_matches_finite_differences() {
-    let points = one_asperity();
+    let points = one_asperity_at_the_pole("footprint-input");
     let area = 150.0; // radius 6.9 nm: several faces of the h 5 mesh at the pole
     let (_, mut built) = build_case(
         "cases/ru-rough-sphere/rough-w6-quick.toml",

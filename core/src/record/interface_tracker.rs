@@ -185,7 +185,7 @@ impl InterfaceTracker {
         );
         Some(match trailing_drawing(&self.samples[k]) {
             Some(d) if d.is_drawing() => format!(
-                "{state}. The body under the attached points is being drawn out plastically: over the last {:.4} of retraction the flat did {:.4e} of work and the continuum dissipated {:.4e} of it plastically ({:.0}%). A point lets go only when its law's own peak is reached, which under perfect plasticity may take much further retraction or never happen (a cold weld); how much the body can carry under a point depends on the contact mesh (a point force's limit load falls as the mesh is refined), the footprint and hardening",
+                "{state}. The body under the attached points is being drawn out plastically: over the last {:.4} of retraction the flat did {:.4e} of work and the continuum dissipated {:.4e} of it plastically ({:.0}%). A point lets go only when its law's own peak is reached, which under perfect plasticity may take much further retraction or never happen (a cold weld); how much the body can carry under a point depends on the contact mesh (a point force's limit load falls as the mesh is refined, unless a footprint correction gives it), the footprint and hardening",
                 d.retraction,
                 d.work,
                 d.plastic_dissipation,
@@ -208,7 +208,10 @@ impl InterfaceTracker {
             s.n_contact_at_max_force = now.n_contact as f64;
             s.contact_area_at_max_force = now.contact_area;
             if let Some((_, fields)) = model.contributions[k].point_output() {
-                let compression = fields[0].values.iter().fold(0.0f64, |m, g| m.max(-g));
+                // the law's own gap: with a footprint correction the gap at the mesh also holds
+                // the footprint's compliance and indentation, which are not the asperity's
+                let gap = fields.iter().find(|f| f.name == "footprint_law_gap").unwrap_or(&fields[0]);
+                let compression = gap.values.iter().fold(0.0f64, |m, g| m.max(-g));
                 s.max_point_compression_at_max_force = compression;
                 s.point_share_of_approach_at_max_force = if a_now > 0.0 { compression / a_now } else { 0.0 };
             }

@@ -63,7 +63,8 @@ pub struct InterfaceSummary {
     pub n_contact_at_max_force: f64,
     pub contact_area_at_max_force: f64,
     /// Largest compression (-gap) of any interface point at the maximum force: for asperities,
-    /// the deformation of the most loaded asperity.
+    /// the deformation of the most loaded asperity (with a footprint correction, its law's own
+    /// gap, without the footprint's compliance and indentation).
     pub max_point_compression_at_max_force: f64,
     /// max_point_compression_at_max_force / approach_at_max_force: the share of the approach
     /// taken by the most compressed asperity (the rest is the continuum's deformation).

@@ -1,0 +1,96 @@
+//! Placing discrete points (asperities) on a body's surface: each point's in-plane position,
+//! measured from the surface's lowest point (the pole) along two directions normal to the
+//! flat, is projected along the normal onto the surface faces; with a footprint its node
+//! weights average the displacement over a disc ([`crate::footprint`]), without one they are
+//! the face's shape functions at the point.
+
+use crate::footprint::{corner_area, locate_footprint};
+use crate::rigid_flat::{DiscretePoint, plane_basis};
+use crate::surface_locator::SurfaceLocator;
+use stiction_core::CoreError;
+use stiction_core::mesh::Mesh;
+
+/// One placed point.
+#[derive(Debug, Clone)]
+pub struct PlacedPoint {
+    pub nodes: Vec<usize>,
+    /// Node weights (sum 1): the point's interpolation of the surface displacement.
+    pub weights: Vec<f64>,
+    /// x . n - h: the reference level of the point's tip along the normal.
+    pub level: f64,
+    pub position: [f64; 3],
+    /// Mean corner area of the faces under the point (or its footprint).
+    pub face_area: f64,
+}
+
+/// Places `discrete` on group `surface` for interface `name` (unit `normal` from the flat
+/// toward the body); `footprint_area(i)` is point i's footprint (0: the point itself).
+/// Returns the points and the pole's level along the normal.
+pub fn place_points(
+    mesh: &Mesh,
+    name: &str,
+    surface: &str,
+    normal: [f64; 3],
+    discrete: &[DiscretePoint],
+    source: &str,
+    footprint_area: impl Fn(usize) -> f64,
+) -> Result<(Vec<PlacedPoint>, f64), CoreError> {
+    let group = mesh.group(surface)?;
+    let locator = SurfaceLocator::new(mesh, group, normal)?;
+    let level_of = |x: [f64; 3]| (0..3).map(|k| x[k] * normal[k]).sum::<f64>();
+    // In-plane origin: the lowest node of the surface (the pole).
+    let pole = mesh
+        .group_nodes(group)
+        .iter()
+        .map(|&n| mesh.nodes[n])
+        .min_by(|a, b| level_of(*a).total_cmp(&level_of(*b)))
+        .expect("a surface group has nodes");
+    let (e1, e2) = plane_basis(normal);
+    let pole_level = level_of(pole);
+    let mut points = Vec::with_capacity(discrete.len());
+    for (i, d) in discrete.iter().enumerate() {
+        let area = footprint_area(i);
+        // start the ray well on the flat's side of the body
+        let start: [f64; 3] = std::array::from_fn(|k| {
+            pole[k] + d.in_plane[0] * e1[k] + d.in_plane[1] * e2[k] - 10.0 * normal[k] * (1.0 + pole_level.abs())
+        });
+        let outside = || {
+            CoreError::Invalid(format!(
+                "interface '{name}': point {} of {source} at in-plane ({:.4}, {:.4}){} is outside surface '{surface}'",
+                i + 1,
+                d.in_plane[0],
+                d.in_plane[1],
+                if area > 0.0 { " or part of its footprint" } else { "" },
+            ))
+        };
+        if !(d.height >= 0.0 && d.height.is_finite()) {
+            return Err(CoreError::Invalid(format!(
+                "interface '{name}': point {} of {source} has height {}",
+                i + 1,
+                d.height
+            )));
+        }
+        let point = if area > 0.0 {
+            let f = locate_footprint(&locator, start, (e1, e2), normal, area).ok_or_else(outside)?;
+            PlacedPoint {
+                nodes: f.nodes,
+                weights: f.weights,
+                level: f.level - d.height,
+                position: f.center.position,
+                face_area: f.face_area,
+            }
+        } else {
+            let hit = locator.locate(start).ok_or_else(outside)?;
+            let face_area = corner_area(&locator, &hit);
+            PlacedPoint {
+                level: level_of(hit.position) - d.height,
+                position: hit.position,
+                face_area,
+                nodes: hit.nodes,
+                weights: hit.shape,
+            }
+        };
+        points.push(point);
+    }
+    Ok((points, pole_level))
+}
