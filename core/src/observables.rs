@@ -1,6 +1,11 @@
 //! What an interface reports at its committed state, as typed data: the driver's summary,
 //! events and separation test read these fields, and `history.csv` gets them as columns.
 
+/// The name of the point field that holds a point law's own gap where it differs from the gap
+/// at the mesh (a footprint correction puts the footprint's compliance and indentation between
+/// them): the asperity's own deformation is read from it.
+pub const LAW_GAP_FIELD: &str = "footprint_law_gap";
+
 /// Interface quantities at the committed state (forces positive compressive).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct InterfaceObservables {

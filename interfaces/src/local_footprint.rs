@@ -25,6 +25,7 @@
 
 use std::sync::Arc;
 use stiction_core::interface_law::{InterfaceLaw, LawError, LawKind, LawResponse};
+use stiction_core::observables::LAW_GAP_FIELD;
 
 /// The local response under one footprint: elastic compliance and limit force.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -230,8 +231,7 @@ impl InterfaceLaw for SeriesWithFootprint {
     fn state_names(&self) -> Vec<String> {
         let mut names = self.inner.state_names();
         names.extend(
-            ["footprint_law_gap", "footprint_indentation", PLASTIC_WORK_STATE, "footprint_compliance"]
-                .map(String::from),
+            [LAW_GAP_FIELD, "footprint_indentation", PLASTIC_WORK_STATE, "footprint_compliance"].map(String::from),
         );
         names
     }

@@ -5,6 +5,8 @@
 //! the face's reference coordinates, and the point is moved onto the (possibly curved, 6-node)
 //! face at those coordinates.
 
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{AABB, RTree};
 use stiction_core::CoreError;
 use stiction_core::mesh::{Mesh, PhysicalGroup};
 
@@ -26,11 +28,16 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
-/// Faces of a surface group, ready for ray casts along a fixed direction.
+/// Faces of a surface group, ready for ray casts along a fixed direction: an R-tree (crate
+/// `rstar`) of their corner triangles' bounding boxes projected on the plane normal to the
+/// direction finds the faces a ray can hit.
 pub struct SurfaceLocator<'a> {
     mesh: &'a Mesh,
     faces: Vec<(stiction_core::mesh::CellType, &'a [usize])>,
     direction: [f64; 3],
+    /// Two unit vectors spanning the plane normal to the direction.
+    plane: ([f64; 3], [f64; 3]),
+    index: RTree<GeomWithData<Rectangle<[f64; 2]>, usize>>,
 }
 
 impl<'a> SurfaceLocator<'a> {
@@ -44,7 +51,23 @@ impl<'a> SurfaceLocator<'a> {
         if faces.is_empty() {
             return Err(CoreError::EmptyGroup { name: group.name.clone(), what: "triangular faces".into() });
         }
-        Ok(Self { mesh, faces, direction })
+        let plane = crate::rigid_flat::plane_basis(direction);
+        let project = |x: [f64; 3]| [dot(x, plane.0), dot(x, plane.1)];
+        let boxes = faces
+            .iter()
+            .enumerate()
+            .map(|(i, (_, face))| {
+                let corners = [0, 1, 2].map(|a| project(mesh.nodes[face[a]]));
+                let lower = [0, 1].map(|k| corners.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min));
+                let upper = [0, 1].map(|k| corners.iter().map(|c| c[k]).fold(f64::NEG_INFINITY, f64::max));
+                // pad beyond the hit test's barycentric tolerance
+                let pad = 1e-6 * (upper[0] - lower[0] + upper[1] - lower[1]) + 1e-300;
+                let rectangle =
+                    Rectangle::from_corners([lower[0] - pad, lower[1] - pad], [upper[0] + pad, upper[1] + pad]);
+                GeomWithData::new(rectangle, i)
+            })
+            .collect();
+        Ok(Self { mesh, faces, direction, plane, index: RTree::bulk_load(boxes) })
     }
 
     /// Coordinates of node `n` of the mesh.
@@ -57,7 +80,10 @@ impl<'a> SurfaceLocator<'a> {
     pub fn locate(&self, p: [f64; 3]) -> Option<SurfacePoint> {
         let d = self.direction;
         let mut best: Option<(f64, usize, f64, f64)> = None;
-        for (i, (_, face)) in self.faces.iter().enumerate() {
+        let q = [dot(p, self.plane.0), dot(p, self.plane.1)];
+        for candidate in self.index.locate_in_envelope_intersecting(&AABB::from_point(q)) {
+            let i = candidate.data;
+            let face = self.faces[i].1;
             let (a, b, c) = (self.mesh.nodes[face[0]], self.mesh.nodes[face[1]], self.mesh.nodes[face[2]]);
             let (e1, e2) = (sub(b, a), sub(c, a));
             let h = cross(d, e2);
@@ -74,7 +100,9 @@ impl<'a> SurfaceLocator<'a> {
                 continue;
             }
             let t = dot(e2, q) / det; // position along the ray
-            if best.is_none_or(|(bt, ..)| t < bt) {
+            // the nearest along the ray; on a shared edge the lowest face index, whatever order
+            // the index returns the candidates in
+            if best.is_none_or(|(bt, bi, ..)| t < bt || (t == bt && i < bi)) {
                 best = Some((t, i, u.clamp(0.0, 1.0), v.clamp(0.0, 1.0)));
             }
         }

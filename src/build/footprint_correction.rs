@@ -14,8 +14,8 @@
 //! displacement under the resolved disc b of unit force, and on a half-space that mean is
 //!   u_b = 2 (1 - nu^2) / (pi E b) (1 - a^2 / (8 b^2) - a^4 / (64 b^4))
 //! (the disc's displacement 4 (1 - nu^2) p b E(r / b) / (pi E), E the complete elliptic
-//! integral, averaged over r < a). One solve per point; c_i tends to zero as the mesh
-//! resolves the footprint.
+//! integral, averaged over r < a). One solve per point (in blocks of 32 right-hand sides);
+//! c_i tends to zero as the mesh resolves the footprint.
 
 use super::amplitudes::Amplitudes;
 use crate::case::{FootprintCorrectionSpec, LoadedCase, MaterialSpec};
@@ -78,22 +78,28 @@ impl ElasticFlexibility {
         Ok(Self { model, solver, free_index })
     }
 
-    /// For the unit load w_a = sum_a c_a n on `nodes` (weights c_a), by one solve: its
-    /// compliance w_a . K^-1 w_a (the mean normal displacement of the pattern per unit force)
-    /// and the cross term w_b . K^-1 w_a with the load pattern `other`.
-    pub fn compliance(
+    /// For each unit load w_a = sum_a c_a n (nodes and weights c_a in `loads`), by one solve
+    /// for all of them: its compliance w_a . K^-1 w_a (the mean normal displacement of the
+    /// pattern per unit force) and the cross term w_b . K^-1 w_a with its partner load
+    /// pattern in `partners`.
+    pub fn compliances(
         &mut self,
-        nodes: &[usize],
-        weights: &[f64],
-        other: (&[usize], &[f64]),
+        loads: &[(&[usize], &[f64])],
+        partners: &[(&[usize], &[f64])],
         normal: [f64; 3],
-    ) -> std::result::Result<(f64, f64), stiction_core::CoreError> {
-        let load_a = self.load(nodes, weights, normal);
-        let load_b = self.load(other.0, other.1, normal);
-        let mut x = load_a.clone();
-        self.solver.solve_in_place(&mut x)?;
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| a * b).sum();
-        Ok((dot(&load_a, &x), dot(&load_b, &x)))
+    ) -> std::result::Result<Vec<(f64, f64)>, stiction_core::CoreError> {
+        let n = self.model.n_free();
+        let mut columns: Vec<f64> = loads.iter().flat_map(|(nodes, w)| self.load(nodes, w, normal)).collect();
+        let right = columns.clone();
+        self.solver.solve_columns_in_place(&mut columns, loads.len())?;
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>();
+        Ok((0..loads.len())
+            .map(|i| {
+                let x = &columns[i * n..(i + 1) * n];
+                let partner = self.load(partners[i].0, partners[i].1, normal);
+                (dot(&right[i * n..(i + 1) * n], x), dot(&partner, x))
+            })
+            .collect())
     }
 
     /// sum_a c_a n on the free dofs of `nodes`.
@@ -199,14 +205,20 @@ pub fn set_compliances(
     .map_err(error)?;
     let mut compliances = Vec::with_capacity(small.len());
     let mut mesh_compliances = Vec::with_capacity(small.len());
-    for (i, ((nodes, weights), b)) in small.iter().zip(&big).enumerate() {
-        let (c_small, cross) = flexibility.compliance(nodes, weights, (&b.nodes, &b.weights), normal).map_err(error)?;
-        let q = (radius / big_radius[i]).powi(2);
-        let cross_half_space = 2.0 * (1.0 - poisson * poisson) / (std::f64::consts::PI * young * big_radius[i])
-            * (1.0 - q / 8.0 - q * q / 64.0);
-        let missing = disc_compliance(young, poisson, radius) - c_small + (cross - cross_half_space);
-        compliances.push(missing.max(0.0));
-        mesh_compliances.push(c_small);
+    // the solves in blocks of right-hand sides
+    for block in (0..small.len()).collect::<Vec<_>>().chunks(32) {
+        let loads: Vec<(&[usize], &[f64])> = block.iter().map(|&i| (&small[i].0[..], &small[i].1[..])).collect();
+        let partners: Vec<(&[usize], &[f64])> =
+            block.iter().map(|&i| (&big[i].nodes[..], &big[i].weights[..])).collect();
+        let results = flexibility.compliances(&loads, &partners, normal).map_err(error)?;
+        for (&i, (c_small, cross)) in block.iter().zip(results) {
+            let q = (radius / big_radius[i]).powi(2);
+            let cross_half_space = 2.0 * (1.0 - poisson * poisson) / (std::f64::consts::PI * young * big_radius[i])
+                * (1.0 - q / 8.0 - q * q / 64.0);
+            let missing = disc_compliance(young, poisson, radius) - c_small + (cross - cross_half_space);
+            compliances.push(missing.max(0.0));
+            mesh_compliances.push(c_small);
+        }
     }
     let index = compliance_state_index(n_inner_state);
     flat.set_point_states(|i, state| state[index] = compliances[i]);

@@ -221,6 +221,8 @@ fn rigid_flat(
                     resistivity: r.resistivity / metre,
                     mean_free_path: r.mean_free_path,
                     film_specific_resistance: r.film_specific_resistance / (metre * metre),
+                    counter_resistivity: r.counter_resistivity.unwrap_or(r.resistivity) / metre,
+                    counter_mean_free_path: r.counter_mean_free_path.unwrap_or(r.mean_free_path),
                 })
             }
         },
@@ -230,12 +232,10 @@ fn rigid_flat(
         Some(points) => {
             let (list, source) = discrete_points(case, &format!("{key}.points"), points)?;
             let correction_key = format!("{key}.points.footprint_correction");
-            let (n_inner_state, law) = match &points.footprint_correction {
-                None => (law.n_state(), law),
-                Some(c) => (
-                    law.n_state(),
-                    footprint_correction::corrected_law(case, &correction_key, c, points.footprint_area, law)?,
-                ),
+            let n_inner_state = law.n_state();
+            let law = match &points.footprint_correction {
+                None => law,
+                Some(c) => footprint_correction::corrected_law(case, &correction_key, c, points.footprint_area, law)?,
             };
             let mut flat = stiction_interfaces::RigidFlat::at_points(
                 ctx.mesh,

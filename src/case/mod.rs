@@ -267,6 +267,11 @@ pub struct ResistanceSpec {
     /// Specific resistance of a film on each spot, in ohm m^2 (default 0: clean metal).
     #[serde(default)]
     pub film_specific_resistance: f64,
+    /// The counter body's (the flat's) resistivity in ohm m (default: the same metal).
+    pub counter_resistivity: Option<f64>,
+    /// The counter body's electron mean free path, in the case's length unit (default: the
+    /// same metal).
+    pub counter_mean_free_path: Option<f64>,
 }
 
 /// Discrete points on the interface surface: generated, or read from a file.

@@ -178,6 +178,15 @@ fn interfaces(case: &LoadedCase) -> Result<()> {
                     );
                 }
             }
+            if let Some(v) = r.counter_resistivity {
+                positive(case, &key("resistance.counter_resistivity"), v)?;
+            }
+            if let Some(v) = r.counter_mean_free_path.filter(|v| !(v.is_finite() && *v >= 0.0)) {
+                return Err(case.error(
+                    key("resistance.counter_mean_free_path"),
+                    format!("must be a finite number >= 0, got {v}"),
+                ));
+            }
             metres_per_length_unit(case, &key("resistance"))?;
         }
     }

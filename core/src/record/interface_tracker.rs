@@ -210,7 +210,7 @@ impl InterfaceTracker {
             if let Some((_, fields)) = model.contributions[k].point_output() {
                 // the law's own gap: with a footprint correction the gap at the mesh also holds
                 // the footprint's compliance and indentation, which are not the asperity's
-                let gap = fields.iter().find(|f| f.name == "footprint_law_gap").unwrap_or(&fields[0]);
+                let gap = fields.iter().find(|f| f.name == crate::observables::LAW_GAP_FIELD).unwrap_or(&fields[0]);
                 let compression = gap.values.iter().fold(0.0f64, |m, g| m.max(-g));
                 s.max_point_compression_at_max_force = compression;
                 s.point_share_of_approach_at_max_force = if a_now > 0.0 { compression / a_now } else { 0.0 };
