@@ -89,10 +89,6 @@ impl SeriesWithFootprint {
         Ok(Self { inner, local })
     }
 
-    pub fn local(&self) -> LocalFootprint {
-        self.local
-    }
-
     /// The law at its own gap `x` from the committed state `old` (the law's part).
     fn law(&self, x: f64, old: &[f64], new: &mut [f64]) -> Result<LawResponse, LawError> {
         self.inner.evaluate(x, old, new)

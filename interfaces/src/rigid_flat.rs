@@ -77,6 +77,8 @@ struct InterfacePoint {
     /// x . n - h
     level: f64,
     position: [f64; 3],
+    /// Mean corner area of the faces under a discrete point (0 for surface quadrature points).
+    face_area: f64,
 }
 
 pub struct RigidFlat {
@@ -195,6 +197,7 @@ impl RigidFlat {
                         weight: p.area,
                         level,
                         position: p.position,
+                        face_area: 0.0,
                     });
                 }
             }
@@ -236,8 +239,7 @@ impl RigidFlat {
         let normal = unit_normal(&spec, kinematics)?;
         let (placed, pole_level) =
             place_points(mesh, &spec.name, &spec.surface, normal, discrete, source, |_| footprint_area)?;
-        let face_areas: Vec<f64> = placed.iter().map(|p| p.face_area).collect();
-        let points = placed
+        let points: Vec<InterfacePoint> = placed
             .into_iter()
             .map(|p| InterfacePoint {
                 nodes: p.nodes,
@@ -245,12 +247,13 @@ impl RigidFlat {
                 weight: 1.0,
                 level: p.level,
                 position: p.position,
+                face_area: p.face_area,
             })
             .collect();
         let mean_height = discrete.iter().map(|d| d.height).sum::<f64>() / discrete.len() as f64;
         let mut flat = Self::assemble_new(spec, kinematics, law, normal, points, pole_level - mean_height)?;
         if footprint_area > 0.0 {
-            let mean_face_area = face_areas.iter().sum::<f64>() / face_areas.len() as f64;
+            let mean_face_area = flat.points.iter().map(|p| p.face_area).sum::<f64>() / flat.points.len() as f64;
             flat.footprint = Some(FootprintResolution { footprint_area, mean_face_area });
         }
         Ok(flat)
@@ -315,9 +318,10 @@ impl RigidFlat {
         self.state_trial.copy_from_slice(&self.state_committed);
     }
 
-    /// Each point's nodes and their weights in its displacement (shape functions or footprint).
-    pub fn point_weights(&self) -> impl Iterator<Item = (&[usize], &[f64])> {
-        self.points.iter().map(|p| (&p.nodes[..], &p.shape[..]))
+    /// Each point's nodes, their weights in its displacement (shape functions or footprint)
+    /// and the mean corner area of the faces under it (discrete points; 0 otherwise).
+    pub fn point_weights(&self) -> impl Iterator<Item = (&[usize], &[f64], f64)> {
+        self.points.iter().map(|p| (&p.nodes[..], &p.shape[..], p.face_area))
     }
 
     /// Unit normal from the flat toward the body.

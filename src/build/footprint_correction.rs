@@ -194,11 +194,10 @@ pub fn set_compliances(
     let radius = (area / std::f64::consts::PI).sqrt();
     let normal = flat.normal();
     let error = |e: stiction_core::CoreError| case.error(format!("{key}.compliance"), e.to_string());
-    let small: Vec<(Vec<usize>, Vec<f64>)> = flat.point_weights().map(|(n, w)| (n.to_vec(), w.to_vec())).collect();
-    let (placed, _) =
-        place_points(mesh, flat.name(), surface, normal, discrete, "the points", |_| area).map_err(error)?;
+    let small: Vec<(&[usize], &[f64])> = flat.point_weights().map(|(n, w, _)| (n, w)).collect();
     // a disc the mesh resolves: three face edges (edge ~ 1.52 sqrt(corner area)), >= 3 radii
-    let big_radius: Vec<f64> = placed.iter().map(|p| (3.0 * 1.52 * p.face_area.sqrt()).max(3.0 * radius)).collect();
+    let big_radius: Vec<f64> =
+        flat.point_weights().map(|(.., face_area)| (3.0 * 1.52 * face_area.sqrt()).max(3.0 * radius)).collect();
     let (big, _) = place_points(mesh, flat.name(), surface, normal, discrete, "the points", |i| {
         std::f64::consts::PI * big_radius[i].powi(2)
     })
@@ -207,7 +206,7 @@ pub fn set_compliances(
     let mut mesh_compliances = Vec::with_capacity(small.len());
     // the solves in blocks of right-hand sides
     for block in (0..small.len()).collect::<Vec<_>>().chunks(32) {
-        let loads: Vec<(&[usize], &[f64])> = block.iter().map(|&i| (&small[i].0[..], &small[i].1[..])).collect();
+        let loads: Vec<(&[usize], &[f64])> = block.iter().map(|&i| small[i]).collect();
         let partners: Vec<(&[usize], &[f64])> =
             block.iter().map(|&i| (&big[i].nodes[..], &big[i].weights[..])).collect();
         let results = flexibility.compliances(&loads, &partners, normal).map_err(error)?;
