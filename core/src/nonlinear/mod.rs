@@ -10,6 +10,7 @@ pub mod convergence;
 pub mod dissipation;
 pub mod newton;
 pub mod quasi_newton;
+mod refactorization_costs;
 pub mod settle;
 
 pub use convergence::{NewtonSettings, ReferenceScales};

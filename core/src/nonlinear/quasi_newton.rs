@@ -9,16 +9,24 @@
 //! search as Newton. The tangent is reassembled and refactorized (and the pairs dropped):
 //! - at the first increment, and after a failed one;
 //! - when an iteration reduces ||r|| by less than `slow_ratio` (convergence has slowed);
-//! - after `refresh_after` iterations on one factor within an increment.
+//! - when the iterations left at the observed rate would cost more than a refactorization
+//!   (on a factor made in the last increment, judged once the steps use two BFGS pairs; see
+//!   [`super::refactorization_costs`]);
 //! - at every iteration while the tangent is indefinite (an LDL^T factor: softening).
+//!
 //! So a hard increment degrades to full Newton, never to a crawl; and an increment the
 //! quasi-Newton iterations cannot converge is solved again by full Newton before it counts as
-//! failed, and the rest of the run uses full Newton (a path hard enough to defeat the
-//! quasi-Newton iterations, e.g. a cohesive crack growing, is Newton's ground). Convergence is judged by
-//! the same test as Newton's ([`NewtonSettings::converged`]): the criteria are not loosened.
+//! failed, and full Newton goes on for the next increments (a path hard enough to defeat the
+//! quasi-Newton iterations, e.g. a cohesive crack growing, is Newton's ground): for
+//! [`FIRST_NEWTON_STRETCH`] increments after the first such failure, twice as many after each
+//! further one (so the failed attempts cost a bounded share however often the path is hard),
+//! then quasi-Newton again (an adhesive jump-in is hard for a few increments, not for the rest
+//! of the run). Convergence is judged by the same test as Newton's
+//! ([`NewtonSettings::converged`]): the criteria are not loosened.
 
 use super::convergence::{NewtonSettings, ReferenceScales, check_iteration};
 use super::newton::line_search;
+use super::refactorization_costs::{Costs, ITERATIONS_AFTER_REFACTORIZATION, rate_is_trusted};
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
 use crate::error::Result;
 use crate::linear_solver::{FactorKind, LinearSolver};
@@ -37,46 +45,11 @@ pub struct QuasiNewtonSolver {
     /// The last tangent was not positive definite (softening): BFGS's curvature condition
     /// fails there, so the iterations refactorize every time (full Newton) until it is again.
     indefinite: bool,
-    /// Set by the first increment the quasi-Newton iterations could not converge.
-    newton_only: bool,
+    /// The increments handed to full Newton after the quasi-Newton iterations failed one.
+    newton: NewtonStretch,
     costs: Costs,
-}
-
-/// The costs that decide when refactorizing pays: measured (seconds), or a fixed ratio.
-#[derive(Debug, Clone, Copy, Default)]
-struct Costs {
-    /// A tangent assembly plus a numeric factorization.
-    refactorization: f64,
-    /// A quasi-Newton iteration: a solve with the factor and a residual assembly.
-    iteration: f64,
-    /// When set, refactorization / iteration is this ratio instead of the measured one, so the
-    /// solver's choices depend on the residuals only and a run is reproducible to the last digit
-    /// (for a given number of threads).
-    fixed_ratio: Option<f64>,
-}
-
-/// Iterations a refactorized (Newton-like) increment is expected to need.
-const ITERATIONS_AFTER_REFACTORIZATION: f64 = 4.0;
-
-impl Costs {
-    /// Whether to refactorize now: the iterations left at the observed rate `rate` (residual
-    /// ratio per iteration) to bring `residual` to `target` cost more than a refactorization
-    /// and the iterations after it, or would not fit in the `budget` of iterations left.
-    fn refactorize_pays(&self, rate: f64, residual: f64, target: f64, budget: usize) -> bool {
-        if residual <= target {
-            return false;
-        }
-        if !(rate < 1.0) {
-            return true;
-        }
-        let remaining = (target / residual).ln() / rate.ln();
-        let (refactorization, iteration) = match self.fixed_ratio {
-            Some(ratio) => (ratio, 1.0),
-            None => (self.refactorization, self.iteration),
-        };
-        remaining > budget as f64
-            || remaining * iteration > refactorization + ITERATIONS_AFTER_REFACTORIZATION * iteration
-    }
+    /// Increments converged since the current factor was made.
+    increments_on_factor: usize,
 }
 
 impl QuasiNewtonSolver {
@@ -86,7 +59,8 @@ impl QuasiNewtonSolver {
             slow_ratio: 0.9,
             factor_ready: false,
             indefinite: false,
-            newton_only: false,
+            newton: NewtonStretch::default(),
+            increments_on_factor: 0,
             costs: Costs::default(),
         }
     }
@@ -95,9 +69,7 @@ impl QuasiNewtonSolver {
     /// and numeric factorization) to a quasi-Newton iteration (residual assembly and solve)
     /// instead of measured times: reproducible to the last digit for a given thread count.
     pub fn with_cost_ratio(settings: NewtonSettings, ratio: f64) -> Self {
-        let mut solver = Self::new(settings);
-        solver.costs.fixed_ratio = Some(ratio);
-        solver
+        Self { costs: Costs::with_fixed_ratio(ratio), ..Self::new(settings) }
     }
 }
 
@@ -160,19 +132,23 @@ impl NonlinearSolver for QuasiNewtonSolver {
         t: f64,
         scales: ReferenceScales,
     ) -> std::result::Result<IncrementReport, IncrementFailure> {
-        if self.newton_only {
-            return super::newton::solve_increment(problem, linear, t, &self.settings, scales);
+        if self.newton.left > 0 {
+            let result = super::newton::solve_increment(problem, linear, t, &self.settings, scales);
+            self.newton_solved(result.is_ok());
+            return result;
         }
         let mut report = IncrementReport::default();
         let result = match self.iterate(problem, linear, t, scales, &mut report) {
             Ok(()) => Ok(report),
             Err(IncrementFailure::Diverged { iterations, .. }) => {
                 // not a crawl, not a cut: the same increment by full Newton from the committed
-                // state, and full Newton for the rest of the run (the path has become hard);
+                // state, and full Newton for the next increments (the path has become hard);
                 // the report counts both attempts
-                self.newton_only = true;
+                self.newton.quasi_newton_failed();
                 problem.rollback();
-                super::newton::solve_increment(problem, linear, t, &self.settings, scales).map(|mut newton| {
+                let newton = super::newton::solve_increment(problem, linear, t, &self.settings, scales);
+                self.newton_solved(newton.is_ok());
+                newton.map(|mut newton| {
                     newton.iterations += iterations;
                     newton.factorizations += report.factorizations;
                     newton.assembly_seconds += report.assembly_seconds;
@@ -189,7 +165,42 @@ impl NonlinearSolver for QuasiNewtonSolver {
     }
 }
 
+/// Increments full Newton solves after the first increment the quasi-Newton iterations failed.
+pub const FIRST_NEWTON_STRETCH: usize = 4;
+
+/// The increments full Newton solves after the quasi-Newton iterations failed one: the failed
+/// increment and 3 more after the first failure, twice as many after each further one.
+#[derive(Debug, Clone, Copy, Default)]
+struct NewtonStretch {
+    /// Increments full Newton still solves.
+    left: usize,
+    /// How many the last failure handed to it.
+    length: usize,
+}
+
+impl NewtonStretch {
+    fn quasi_newton_failed(&mut self) {
+        self.length = (2 * self.length).max(FIRST_NEWTON_STRETCH);
+        self.left = self.length;
+    }
+
+    /// Full Newton solved an increment (`converged`) or failed it (cut: it tries again).
+    fn newton_solved(&mut self, converged: bool) {
+        if converged {
+            self.left = self.left.saturating_sub(1);
+        }
+    }
+}
+
 impl QuasiNewtonSolver {
+    /// After an increment solved by full Newton (`converged` or not): the quasi-Newton
+    /// iterations, when they take over again, start from a factor of their own (whose kind,
+    /// LL^T or LDL^T, they then know).
+    fn newton_solved(&mut self, converged: bool) {
+        self.factor_ready = false;
+        self.newton.newton_solved(converged);
+    }
+
     fn refactorize(
         &mut self,
         problem: &mut dyn NonlinearProblem,
@@ -206,8 +217,9 @@ impl QuasiNewtonSolver {
         self.indefinite = linear.factorize(problem.pattern(), problem.tangent())? == FactorKind::Ldlt;
         report.factorization_seconds += factor_timer.elapsed().as_secs_f64();
         report.factorizations += 1;
-        self.costs.refactorization = timer.elapsed().as_secs_f64();
+        self.costs.refactorized(timer.elapsed().as_secs_f64());
         self.factor_ready = true;
+        self.increments_on_factor = 0;
         Ok(())
     }
 
@@ -232,11 +244,14 @@ impl QuasiNewtonSolver {
         let n = problem.n_free();
         let mut pairs = Pairs::default();
         let (mut du, mut r_old) = (vec![0.0; n], vec![0.0; n]);
+        // the BFGS pairs the last step was computed with
+        let mut pairs_in_last_step = 0;
         for iteration in 0..=settings.max_iterations {
             let check =
                 check_iteration(&settings, problem, scales, iteration, &du, &start_u, &mut report.residual_norms);
             if check.converged {
                 report.iterations = iteration;
+                self.increments_on_factor += 1;
                 return Ok(());
             }
             let (r_norm, force_scale) = (check.residual, check.force_scale);
@@ -250,7 +265,8 @@ impl QuasiNewtonSolver {
                     settings.max_iterations.saturating_sub(iteration + ITERATIONS_AFTER_REFACTORIZATION as usize);
                 if self.indefinite
                     || rate > self.slow_ratio
-                    || self.costs.refactorize_pays(rate, r_norm, target, budget)
+                    || (rate_is_trusted(pairs_in_last_step, self.increments_on_factor)
+                        && self.costs.refactorize_pays(rate, r_norm, target, budget))
                 {
                     self.refactorize(problem, linear, report, true)?;
                     pairs.clear();
@@ -259,6 +275,7 @@ impl QuasiNewtonSolver {
             let iteration_start = Instant::now();
             let timer = Instant::now();
             r_old.copy_from_slice(problem.residual());
+            pairs_in_last_step = pairs.s.len();
             pairs.apply(linear, &r_old, &mut du)?;
             for d in du.iter_mut() {
                 *d = -*d;
@@ -273,10 +290,32 @@ impl QuasiNewtonSolver {
             }
             let y: Vec<f64> = problem.residual().iter().zip(&r_old).map(|(a, b)| a - b).collect();
             pairs.push(du.clone(), y);
-            let elapsed = iteration_start.elapsed().as_secs_f64();
-            self.costs.iteration =
-                if self.costs.iteration > 0.0 { 0.8 * self.costs.iteration + 0.2 * elapsed } else { elapsed };
+            self.costs.iterated(iteration_start.elapsed().as_secs_f64());
         }
         Err(IncrementFailure::Diverged { iterations: settings.max_iterations, residual: norm(problem.residual()) })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 4 increments after the first failure (the failed one included), then 8, then 16; a
+    /// failed (cut) Newton increment does not count.
+    #[test]
+    fn full_newton_takes_a_doubling_stretch_after_each_failure() {
+        let mut stretch = NewtonStretch::default();
+        let mut newton_increments = Vec::new();
+        for _ in 0..3 {
+            stretch.quasi_newton_failed();
+            stretch.newton_solved(false);
+            let mut count = 0;
+            while stretch.left > 0 {
+                stretch.newton_solved(true);
+                count += 1;
+            }
+            newton_increments.push(count);
+        }
+        assert_eq!(newton_increments, [4, 8, 16]);
     }
 }
