@@ -3,7 +3,9 @@
 //! to the core's step driver.
 
 use crate::build::{BuiltModel, build};
-use crate::case::{ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec, SolverSpec};
+use crate::case::{
+    ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec, SolverSpec, StartPredictorSpec,
+};
 use crate::error::{Result, StictionError};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -11,7 +13,7 @@ use std::sync::atomic::AtomicBool;
 use stiction_core::CoreError;
 use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
 use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
-use stiction_core::path::{Continuation, ContinuationMethod, RunPlan, run_steps};
+use stiction_core::path::{Continuation, ContinuationMethod, RunPlan, StartPredictor, run_steps};
 use stiction_core::record::{CyclesWriter, EventsRecorder, HistoryRecorder, Observer, SummaryWriter, VtkRecorder};
 
 pub use stiction_core::record::{InterfaceSummary, RunSummary};
@@ -106,6 +108,10 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         continuation: continuation(&case.case.solver),
         interfaces: built.interfaces.clone(),
         interrupt: options.interrupt.clone(),
+        start_predictor: match case.case.solver.start_predictor {
+            StartPredictorSpec::Tangent => StartPredictor::Tangent,
+            StartPredictorSpec::None => StartPredictor::None,
+        },
     };
     let ordering = match case.case.solver.ordering {
         OrderingSpec::NestedDissection => Ordering::NestedDissection,

@@ -11,7 +11,7 @@ use crate::error::{CoreError, Result};
 use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::sparse::{NO_SLOT, SparsityPattern};
-use crate::tangent_sink::{BlockSlots, SlotSink, TangentSink};
+use crate::tangent_sink::{BlockSlots, ConvexSink, SlotSink, TangentSink};
 use crate::vector::norm;
 use crate::voigt::Stress;
 use rayon::prelude::*;
@@ -467,6 +467,17 @@ impl Model {
     /// Assembles internal force, residual and (optionally) the tangent at the current
     /// displacement; material states are written to the trial copies.
     pub fn assemble(&mut self, with_tangent: bool) -> Result<AssemblyStats> {
+        self.assemble_with(with_tangent, false)
+    }
+
+    /// [`Model::assemble`] with the tangent, whose contribution blocks (interface points) with a
+    /// negative diagonal are left out ([`ConvexSink`]): the solid's tangent and the interfaces'
+    /// positive curvature.
+    pub fn assemble_convex(&mut self) -> Result<AssemblyStats> {
+        self.assemble_with(true, true)
+    }
+
+    fn assemble_with(&mut self, with_tangent: bool, convex: bool) -> Result<AssemblyStats> {
         let start = std::time::Instant::now();
         let pattern = self.pattern.as_ref().expect("Model::finalize must be called before assembly");
         self.internal_force.fill(0.0);
@@ -487,12 +498,23 @@ impl Model {
         // Interfaces and other contributions, through their precomputed block slots.
         for (contribution, blocks) in self.contributions.iter_mut().zip(&self.contribution_slots) {
             let mut sink = SlotSink { values: &mut self.tangent_values, blocks, pattern, free_index: &self.free_index };
-            contribution.assemble(
-                self.time,
-                &self.displacement,
-                &mut self.internal_force,
-                if with_tangent { Some(&mut sink) } else { None },
-            )?;
+            if convex {
+                let mut convex_sink = ConvexSink::new(&mut sink);
+                contribution.assemble(
+                    self.time,
+                    &self.displacement,
+                    &mut self.internal_force,
+                    Some(&mut convex_sink),
+                )?;
+                convex_sink.finish();
+            } else {
+                contribution.assemble(
+                    self.time,
+                    &self.displacement,
+                    &mut self.internal_force,
+                    if with_tangent { Some(&mut sink) } else { None },
+                )?;
+            }
         }
         for (k, &g) in self.free_dofs.iter().enumerate() {
             self.residual[k] = self.internal_force[g] - self.external_force[g];
@@ -645,6 +667,9 @@ impl crate::problem::NonlinearProblem for Model {
     }
     fn assemble(&mut self, with_tangent: bool) -> Result<()> {
         Model::assemble(self, with_tangent).map(|_| ())
+    }
+    fn assemble_convex(&mut self) -> Result<()> {
+        Model::assemble_convex(self).map(|_| ())
     }
     fn residual(&self) -> &[f64] {
         &self.residual

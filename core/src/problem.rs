@@ -21,6 +21,12 @@ pub trait NonlinearProblem {
     /// Assembles the residual (and the tangent if asked) at the trial state; history-dependent
     /// state goes to the trial copies.
     fn assemble(&mut self, with_tangent: bool) -> Result<()>;
+    /// [`NonlinearProblem::assemble`] with a tangent that keeps only the convex part of the
+    /// interface laws (their points of negative normal stiffness left out), for descent
+    /// methods; the residual is the same. The default is the full tangent.
+    fn assemble_convex(&mut self) -> Result<()> {
+        self.assemble(true)
+    }
     /// r on the free dofs from the last assembly.
     fn residual(&self) -> &[f64];
     /// Tangent values on [`NonlinearProblem::pattern`] from the last assembly with tangent.

@@ -89,12 +89,83 @@ impl TangentSink for SlotSink<'_> {
     }
 }
 
+/// A sink that passes each block's entries on to `inner` only if none of the block's diagonal
+/// entries (summed over the block's calls) is negative: a point whose interface law has a
+/// negative normal stiffness (an attractive tail, a softening branch) adds nothing. For a
+/// normal-only law a point's block is rank one, -k N N^T (x) n n^T, so this keeps exactly its
+/// positive-curvature points; the tangent left is the convex part a descent method wants. A
+/// block is judged on its consecutive entries (the contributions give a point's entries
+/// together); [`ConvexSink::finish`] judges the last one.
+pub(crate) struct ConvexSink<'a, S: TangentSink> {
+    inner: &'a mut S,
+    block: Option<usize>,
+    entries: Vec<((usize, usize), (usize, usize), f64)>,
+    /// Summed diagonal entries of the current block, by local index.
+    diagonal: Vec<(usize, f64)>,
+}
+
+impl<'a, S: TangentSink> ConvexSink<'a, S> {
+    pub fn new(inner: &'a mut S) -> Self {
+        Self { inner, block: None, entries: Vec::new(), diagonal: Vec::new() }
+    }
+
+    /// Passes the current block on if it has no negative diagonal entry.
+    pub fn finish(&mut self) {
+        if let Some(block) = self.block.take()
+            && self.diagonal.iter().all(|&(_, d)| d >= 0.0)
+        {
+            for &(local, global, v) in &self.entries {
+                self.inner.add(block, local, global, v);
+            }
+        }
+        self.entries.clear();
+        self.diagonal.clear();
+    }
+}
+
+impl<S: TangentSink> TangentSink for ConvexSink<'_, S> {
+    fn add(&mut self, block: usize, local: (usize, usize), global: (usize, usize), v: f64) {
+        if self.block != Some(block) {
+            self.finish();
+            self.block = Some(block);
+        }
+        if local.0 == local.1 {
+            match self.diagonal.iter_mut().find(|(l, _)| *l == local.0) {
+                Some((_, d)) => *d += v,
+                None => self.diagonal.push((local.0, v)),
+            }
+        }
+        self.entries.push((local, global, v));
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     /// Two overlapping blocks on a 3-node chain, node 0 fixed: each block entry lands in the
     /// slot of its global entry, and constrained entries have none.
+    /// Blocks with a negative summed diagonal entry are left out, the others passed on whole.
+    #[test]
+    fn the_convex_sink_leaves_out_the_blocks_of_negative_stiffness() {
+        let mut kept = Vec::new();
+        let mut inner = |r: usize, c: usize, v: f64| kept.push((r, c, v));
+        let mut sink = ConvexSink::new(&mut inner);
+        // block 0: rank one, positive (kept); block 1: rank one, negative (left out); block 2:
+        // a diagonal entry given in two parts summing to a positive value (kept)
+        for (block, k) in [(0, 2.0), (1, -3.0)] {
+            for (a, b) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+                let sign = if a == b { 1.0 } else { -1.0 };
+                sink.add(block, (a, b), (block * 2 + a, block * 2 + b), sign * k);
+            }
+        }
+        sink.add(2, (0, 0), (4, 4), -1.0);
+        sink.add(2, (0, 0), (4, 4), 1.5);
+        sink.finish();
+        let expected = vec![(0, 0, 2.0), (0, 1, -2.0), (1, 0, -2.0), (1, 1, 2.0), (4, 4, -1.0), (4, 4, 1.5)];
+        assert_eq!(kept, expected);
+    }
+
     #[test]
     fn block_slots_are_the_pattern_slots_of_the_global_entries() {
         let dof_of = |node: usize, _c: usize| node.checked_sub(1);

@@ -403,6 +403,13 @@ pub struct SolverSpec {
     /// residuals only and a run is reproducible to the last digit for a given thread count.
     #[serde(default)]
     pub refactorization_cost_ratio: f64,
+    /// Where an increment with no earlier rate to extrapolate (a run's first, the first after a
+    /// load reversal) starts: "tangent" (default: the committed state moved along the tangent,
+    /// K du/dt = -dR/dt, so a bonded ligament follows the moving flat instead of being torn by
+    /// it in the first residual) or "none" (the committed state). Other increments extrapolate
+    /// the last one.
+    #[serde(default)]
+    pub start_predictor: StartPredictorSpec,
     /// Consecutive cuts after which arc-length continuation takes over (default 2).
     #[serde(default = "default_arc_length_after_cuts")]
     pub arc_length_after_cuts: usize,
@@ -424,6 +431,15 @@ pub enum PrecisionSpec {
     #[default]
     Single,
     Double,
+}
+
+/// The predictor of the increments with no earlier rate to extrapolate.
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum StartPredictorSpec {
+    #[default]
+    Tangent,
+    None,
 }
 
 /// Fill-reducing ordering.
@@ -503,7 +519,7 @@ pub fn defaults_help() -> String {
          tol_displacement = {:e}, line_search = {}, threads = 0 (all cores), cut_factor = {}, \
          growth_factor = {}, continuation = \"none\" (or \"arc-length\", \"dissipation\"), arc_length_after_cuts = {}, \
          method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"), \
-         refactorization_cost_ratio = 0 (measured times); \
+         refactorization_cost_ratio = 0 (measured times), start_predictor = \"tangent\" (or \"none\"); \
          interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
          output.directory = out/<name>, output.vtk = true; ensemble.seed = 1, threads_per_member = 0 (auto), \
          concurrent_members = 0 (auto).",

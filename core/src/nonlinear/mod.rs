@@ -12,6 +12,7 @@ pub mod newton;
 pub mod quasi_newton;
 mod refactorization_costs;
 pub mod settle;
+pub mod tangent_predictor;
 
 pub use convergence::{NewtonSettings, ReferenceScales};
 pub use newton::{NewtonSolver, solve_increment};
@@ -90,6 +91,32 @@ pub trait NonlinearSolver {
     ) -> Result<IncrementReport, IncrementFailure>;
     /// The settings (convergence test, iteration limits) this solver applies.
     fn settings(&self) -> &NewtonSettings;
+    /// Moves the problem's trial state (the committed state) along the tangent from `t0` to
+    /// `t1` ([`tangent_predictor`]); `rate_step` is the step of the difference in t, the costs
+    /// go to `report`. The default factorizes the committed tangent; a solver that keeps a
+    /// factor across increments may reuse its own, or keep the new one.
+    fn predict_along_tangent(
+        &mut self,
+        problem: &mut dyn NonlinearProblem,
+        linear: &mut dyn LinearSolver,
+        times: (f64, f64),
+        rate_step: f64,
+        report: &mut IncrementReport,
+    ) -> Result<(), CoreError> {
+        let fresh = tangent_predictor::PredictorFactor::Fresh;
+        tangent_predictor::predict_along_tangent(problem, linear, times, rate_step, fresh, report).map(|_| ())
+    }
+}
+
+impl IncrementReport {
+    /// Adds the costs (iterations, factorizations, seconds) of `other` to this report.
+    pub fn add_costs(&mut self, other: &IncrementReport) {
+        self.iterations += other.iterations;
+        self.factorizations += other.factorizations;
+        self.assembly_seconds += other.assembly_seconds;
+        self.factorization_seconds += other.factorization_seconds;
+        self.solve_seconds += other.solve_seconds;
+    }
 }
 
 #[cfg(test)]

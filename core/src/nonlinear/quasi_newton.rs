@@ -27,6 +27,7 @@
 use super::convergence::{NewtonSettings, ReferenceScales, check_iteration};
 use super::newton::line_search;
 use super::refactorization_costs::{Costs, ITERATIONS_AFTER_REFACTORIZATION, rate_is_trusted};
+use super::tangent_predictor::{PredictorFactor, predict_along_tangent};
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
 use crate::error::Result;
 use crate::linear_solver::{FactorKind, LinearSolver};
@@ -125,6 +126,28 @@ impl NonlinearSolver for QuasiNewtonSolver {
         &self.settings
     }
 
+    /// The tangent predictor on the solver's own factor when it holds one; otherwise on a
+    /// factor of the committed tangent, which the iterations then start from.
+    fn predict_along_tangent(
+        &mut self,
+        problem: &mut dyn NonlinearProblem,
+        linear: &mut dyn LinearSolver,
+        times: (f64, f64),
+        rate_step: f64,
+        report: &mut IncrementReport,
+    ) -> Result<()> {
+        let reuse = self.factor_ready && self.newton.left == 0;
+        let factor = if reuse { PredictorFactor::Reuse } else { PredictorFactor::Fresh };
+        let timer = Instant::now();
+        if let Some(kind) = predict_along_tangent(problem, linear, times, rate_step, factor, report)? {
+            self.indefinite = kind == FactorKind::Ldlt;
+            self.costs.refactorized(timer.elapsed().as_secs_f64());
+            self.factor_ready = true;
+            self.increments_on_factor = 0;
+        }
+        Ok(())
+    }
+
     fn solve(
         &mut self,
         problem: &mut dyn NonlinearProblem,
@@ -149,11 +172,7 @@ impl NonlinearSolver for QuasiNewtonSolver {
                 let newton = super::newton::solve_increment(problem, linear, t, &self.settings, scales);
                 self.newton_solved(newton.is_ok());
                 newton.map(|mut newton| {
-                    newton.iterations += iterations;
-                    newton.factorizations += report.factorizations;
-                    newton.assembly_seconds += report.assembly_seconds;
-                    newton.factorization_seconds += report.factorization_seconds;
-                    newton.solve_seconds += report.solve_seconds;
+                    newton.add_costs(&IncrementReport { iterations, ..report });
                     newton
                 })
             }

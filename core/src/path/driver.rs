@@ -18,7 +18,7 @@
 
 use super::arc_length_control::ArcLengthControl;
 use super::dissipation_control::DissipationControl;
-use super::load_control::LoadControl;
+use super::load_control::{LoadControl, StartPredictor};
 use super::step::StepPlan;
 use super::{Attempt, Crossing, PathControl, Solvers, StepWindow};
 use crate::error::{CoreError, Result};
@@ -75,6 +75,8 @@ pub struct RunPlan {
     /// Set (e.g. by a Ctrl-C handler) to stop the run after the increment in progress: the run
     /// ends with status "interrupted".
     pub interrupt: Option<Arc<AtomicBool>>,
+    /// The predictor of the increments with no earlier rate to extrapolate.
+    pub start_predictor: StartPredictor,
 }
 
 /// Path following at limit points.
@@ -132,7 +134,7 @@ pub fn run_steps(
         breakpoints: breakpoints(model, plan),
         t: 0.0,
         t_end: plan.steps.last().map_or(0.0, |s| s.end_time),
-        load: LoadControl::new(&first.incrementation),
+        load: LoadControl::new(&first.incrementation, plan.start_predictor),
         crossing: None,
         last_converged: None,
         arc_blocked: false,

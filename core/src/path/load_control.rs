@@ -1,32 +1,71 @@
 //! Load (or displacement) control: the load parameter t is prescribed increment by increment.
 //! The next target is t + dt, clipped to the step end and to the first amplitude breakpoint
-//! (so load reversals are exact), and snapped to the step end when within 1e-3 dt of it. The
-//! predictor extrapolates the last converged increment, u += du_last (t_target - t) / dt_last,
-//! except across a reversal. A failed increment is cut by `cut_factor`; one that converged in
-//! few iterations lets the next grow by `growth_factor`.
+//! (so load reversals are exact), and snapped to the step end when within 1e-3 dt of it. A
+//! failed increment is cut by `cut_factor`; one that converged in few iterations lets the next
+//! grow by `growth_factor`.
+//!
+//! The predictor (where the solve starts): the last converged increment extrapolated,
+//! u += du_last (t_target - t) / dt_last; where there is no rate to extrapolate (a run's first
+//! increment, the first after a load reversal) the tangent predictor
+//! ([`crate::nonlinear::tangent_predictor`], unless [`StartPredictor::None`] is asked); after
+//! a failed attempt or a snap, none (the committed state).
 
 use super::step::Incrementation;
 use super::{Attempt, PathControl, Solvers, StepWindow};
 use crate::model::Model;
-use crate::nonlinear::{IncrementFailure, ReferenceScales};
+use crate::nonlinear::{IncrementFailure, IncrementReport, ReferenceScales};
+
+/// The predictor of the increments that have no earlier rate to extrapolate.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum StartPredictor {
+    /// Along the tangent at the committed state.
+    #[default]
+    Tangent,
+    /// None: the solve starts from the committed state.
+    None,
+}
+
+/// Where the next attempt starts.
+#[derive(Debug, Clone, PartialEq)]
+enum Predictor {
+    /// The committed state.
+    None,
+    /// Along the tangent at the committed state.
+    Tangent,
+    /// The last converged increment (free-dof displacement increment, dt), scaled.
+    Extrapolate(Vec<f64>, f64),
+}
 
 pub struct LoadControl {
     /// The next increment of the load parameter.
     pub dt: f64,
     incrementation: Incrementation,
-    /// The last converged increment (free-dof displacement increment, dt) for the predictor.
-    last_increment: Option<(Vec<f64>, f64)>,
+    /// Where the next attempt starts.
+    predictor: Predictor,
+    /// The predictor where there is no rate to extrapolate.
+    start_predictor: StartPredictor,
     /// The target of the first failed attempt since the last commit (where a limit point lies).
     pub first_failed_target: Option<f64>,
 }
 
 impl LoadControl {
-    pub fn new(incrementation: &Incrementation) -> Self {
-        Self {
+    pub fn new(incrementation: &Incrementation, start_predictor: StartPredictor) -> Self {
+        let mut control = Self {
             dt: incrementation.initial,
             incrementation: incrementation.clone(),
-            last_increment: None,
+            predictor: Predictor::None,
+            start_predictor,
             first_failed_target: None,
+        };
+        control.predictor = control.at_start();
+        control
+    }
+
+    /// The predictor where there is no rate to extrapolate.
+    fn at_start(&self) -> Predictor {
+        match self.start_predictor {
+            StartPredictor::Tangent => Predictor::Tangent,
+            StartPredictor::None => Predictor::None,
         }
     }
 
@@ -51,16 +90,24 @@ impl LoadControl {
         target
     }
 
-    /// Remembers a converged increment for the predictor (forgotten across a reversal or when
-    /// the load parameter did not move forward).
+    /// Remembers a converged increment for the predictor: extrapolated, except when the load
+    /// parameter did not move forward (a snap: none) or turns at a reversal (the start
+    /// predictor).
     pub fn remember(&mut self, du: Vec<f64>, dt: f64, reversal: bool) {
-        self.last_increment = if reversal || dt <= 0.0 { None } else { Some((du, dt)) };
+        self.predictor = if dt <= 0.0 {
+            Predictor::None
+        } else if reversal {
+            self.at_start()
+        } else {
+            Predictor::Extrapolate(du, dt)
+        };
         self.first_failed_target = None;
     }
 
-    /// Forgets the predictor (after a failed attempt).
+    /// Forgets the predictor (after a failed attempt): the next attempt starts from the
+    /// committed state.
     pub fn forget(&mut self) {
-        self.last_increment = None;
+        self.predictor = Predictor::None;
     }
 
     /// The next increment grows after an easy one.
@@ -90,11 +137,31 @@ impl PathControl for LoadControl {
         scales: ReferenceScales,
     ) -> Attempt {
         let target = self.target(window);
-        if let Some((du, dt_last)) = &self.last_increment {
-            model.update_free(du, (target - window.t) / dt_last);
+        let mut predictor_costs = IncrementReport::default();
+        match &self.predictor {
+            Predictor::None => {}
+            Predictor::Extrapolate(du, dt_last) => model.update_free(du, (target - window.t) / dt_last),
+            Predictor::Tangent => {
+                let times = (window.t, target);
+                let rate_step = 1e-6 * window.t_end;
+                let predicted = solvers.nonlinear.predict_along_tangent(
+                    model,
+                    solvers.linear,
+                    times,
+                    rate_step,
+                    &mut predictor_costs,
+                );
+                if predicted.is_err() {
+                    // a singular committed tangent: start from the committed state
+                    model.rollback();
+                }
+            }
         }
         match solvers.nonlinear.solve(model, solvers.linear, target, scales) {
-            Ok(report) => Attempt::Converged(report),
+            Ok(mut report) => {
+                report.add_costs(&predictor_costs);
+                Attempt::Converged(report)
+            }
             Err(e) => {
                 self.first_failed_target.get_or_insert(target);
                 Attempt::Failed(e)
@@ -134,7 +201,7 @@ mod tests {
 
     #[test]
     fn targets_land_on_breakpoints_and_the_step_end() {
-        let mut control = LoadControl::new(&incrementation());
+        let mut control = LoadControl::new(&incrementation(), StartPredictor::Tangent);
         assert_eq!(control.target(&window(0.0, &[])), 0.1);
         assert_eq!(control.target(&window(0.0, &[0.05, 0.5])), 0.05, "clipped to the first breakpoint ahead");
         assert_eq!(control.target(&window(0.05, &[0.05])), 0.15000000000000002, "a breakpoint behind is ignored");
@@ -147,7 +214,7 @@ mod tests {
 
     #[test]
     fn cuts_shrink_the_increment_until_the_minimum_then_stop_with_the_reason() {
-        let mut control = LoadControl::new(&incrementation());
+        let mut control = LoadControl::new(&incrementation(), StartPredictor::Tangent);
         let failure = IncrementFailure::Diverged { iterations: 25, residual: 1.0 };
         let mut cuts = 0;
         let message = loop {
@@ -162,11 +229,21 @@ mod tests {
     }
 
     #[test]
-    fn the_predictor_is_forgotten_across_a_reversal() {
-        let mut control = LoadControl::new(&incrementation());
-        control.remember(vec![1.0], 0.1, false);
-        assert!(control.last_increment.is_some());
-        control.remember(vec![1.0], 0.1, true);
-        assert!(control.last_increment.is_none());
+    fn extrapolation_stops_at_a_reversal_a_snap_and_a_failure() {
+        for (start, at_start) in
+            [(StartPredictor::Tangent, Predictor::Tangent), (StartPredictor::None, Predictor::None)]
+        {
+            let mut control = LoadControl::new(&incrementation(), start);
+            assert_eq!(control.predictor, at_start, "the first increment");
+            control.remember(vec![1.0], 0.1, false);
+            assert_eq!(control.predictor, Predictor::Extrapolate(vec![1.0], 0.1));
+            control.remember(vec![1.0], 0.1, true);
+            assert_eq!(control.predictor, at_start, "after a reversal");
+            control.remember(vec![1.0], 0.0, true);
+            assert_eq!(control.predictor, Predictor::None, "after a snap");
+            control.remember(vec![1.0], 0.1, false);
+            control.forget();
+            assert_eq!(control.predictor, Predictor::None, "after a failure");
+        }
     }
 }

@@ -15,7 +15,7 @@ pub mod step;
 pub use arc_length_control::ArcLengthControl;
 pub use dissipation_control::DissipationControl;
 pub use driver::{Continuation, ContinuationMethod, RunPlan, run_steps};
-pub use load_control::LoadControl;
+pub use load_control::{LoadControl, StartPredictor};
 pub use step::{Incrementation, StepPlan};
 
 use crate::linear_solver::LinearSolver;
