@@ -88,6 +88,41 @@ fn dissipation_control_follows_the_snap_back_of_a_cohesive_bar_and_dissipates_ex
     }
 }
 
+/// A peak passed inside one load-controlled increment: with increments of 0.3 in time (flat
+/// travel 0.06) the second one (travel 0.06 -> 0.12) steps over the peak at 0.11 and converges
+/// on the separated bar, which moved back against the first increment. The driver counts that
+/// turn as a jump over a limit point, rolls it back and follows the snap-back from the last
+/// bonded state. Measured: the states lie on the closed form, the first after the bonded one
+/// at tension 0.970 just past the peak, 23 on the softening branch down to d = 0.040000, net
+/// work 0.019725 (the trapezoid from the bonded state to the first softening one cuts the
+/// corner at the peak: 1.4% under G_c); before, the path went from tension 0.545 to 0.
+#[test]
+fn a_peak_passed_inside_one_large_increment_is_followed_not_stepped_over() {
+    let sets = ["steps.0.initial_increment=0.3", "steps.0.max_increment=0.3"];
+    let (_, run) = run_case(CASE, &sets, "cohesive-bar-large-increments");
+    assert_eq!(run.status, "completed", "{:?}", run.message);
+    let p = path(&run.output_directory);
+    let worst = p.iter().map(|&(d, s)| (s - closed_form(d, s).1).abs()).fold(0.0f64, f64::max);
+    let snap_back = softening_states(&p);
+    let lowest = snap_back.iter().map(|q| q.0).fold(f64::INFINITY, f64::min);
+    let highest = p.iter().map(|q| q.1).fold(0.0f64, f64::max);
+    let work = net_work(&p);
+    println!(
+        "increments of 0.3: {} increments ({} cut, {} path-following), largest distance from the closed form {worst:.1e}, highest tension {highest:.4}, {} states on the softening branch down to d = {lowest:.6}, net work {work:.6}",
+        run.increments,
+        run.cut_increments,
+        run.arc_length_increments,
+        snap_back.len()
+    );
+    assert!(worst < 1e-8 * SIGMA_MAX, "{worst}");
+    assert_eq!(run.snaps, 0, "the path is followed, not jumped");
+    // the peak (tension 1 at d = 0.11) is approached, not stepped over from 0.545 to 0
+    assert!(highest > 0.9 * SIGMA_MAX, "{p:?}");
+    assert!(snap_back.len() >= 5 && lowest < DELTA_F + 1e-3, "{snap_back:?}");
+    // the trapezoid across the peak cuts its corner: the work falls short by that corner only
+    assert!((work / G_C - 1.0).abs() < 0.02, "net work {work} vs G_c {G_C}");
+}
+
 /// Central-difference check of the model's damage dissipation: its gradient along a direction
 /// in the free dofs and its rate in pseudo-time (at fixed free dofs), at a trial state
 /// `trial` (all dofs) and time `t` after committing `committed` at `t_c`.

@@ -138,10 +138,9 @@ impl NonlinearSolver for QuasiNewtonSolver {
     ) -> Result<()> {
         let reuse = self.factor_ready && self.newton.left == 0;
         let factor = if reuse { PredictorFactor::Reuse } else { PredictorFactor::Fresh };
-        let timer = Instant::now();
-        if let Some(kind) = predict_along_tangent(problem, linear, times, rate_step, factor, report)? {
-            self.indefinite = kind == FactorKind::Ldlt;
-            self.costs.refactorized(timer.elapsed().as_secs_f64());
+        if let Some(made) = predict_along_tangent(problem, linear, times, rate_step, factor, report)? {
+            self.indefinite = made.kind == FactorKind::Ldlt;
+            self.costs.refactorized(made.seconds);
             self.factor_ready = true;
             self.increments_on_factor = 0;
         }

@@ -28,10 +28,20 @@ pub enum PredictorFactor {
     Fresh,
 }
 
+/// A factorization the predictor made: its kind, and what it cost as a refactorization does
+/// in the iterations (the assembly with the tangent and the numeric factorization, seconds),
+/// for a solver's cost model; the predictor's second residual assembly and its solve are not
+/// part of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PredictorFactorization {
+    pub kind: FactorKind,
+    pub seconds: f64,
+}
+
 /// Moves the problem's trial state (the committed state, at `t0`) along the tangent to `t1`
 /// (see the module documentation); `rate_step` is the step of the difference in t. Returns the
-/// kind of the factor it made (None when it reused one, or when the residual does not depend on
-/// t there, so nothing moves). On error (a non-finite prediction among them) the trial
+/// factorization it made (None when it reused one, or when the residual does not depend on t
+/// there, so nothing moves). On error (a non-finite prediction among them) the trial
 /// displacement has not moved; the costs go to `report` either way.
 pub fn predict_along_tangent(
     problem: &mut dyn NonlinearProblem,
@@ -40,18 +50,21 @@ pub fn predict_along_tangent(
     rate_step: f64,
     factor: PredictorFactor,
     report: &mut IncrementReport,
-) -> Result<Option<FactorKind>> {
-    let rate = residual_rate_towards(problem, (t0, t1), rate_step, factor == PredictorFactor::Fresh, report)?;
+) -> Result<Option<PredictorFactorization>> {
+    let fresh = factor == PredictorFactor::Fresh;
+    let (rate, tangent_assembly_seconds) = residual_rate_towards(problem, (t0, t1), rate_step, fresh, report)?;
     let mut velocity: Vec<f64> = rate.iter().map(|r| -r).collect();
     if !(norm(&velocity) > 0.0) {
         return Ok(None);
     }
-    let mut kind = None;
-    if factor == PredictorFactor::Fresh {
+    let mut made = None;
+    if fresh {
         let timer = Instant::now();
-        kind = Some(linear.factorize(problem.pattern(), problem.tangent())?);
-        report.factorization_seconds += timer.elapsed().as_secs_f64();
+        let kind = linear.factorize(problem.pattern(), problem.tangent())?;
+        let seconds = timer.elapsed().as_secs_f64();
+        report.factorization_seconds += seconds;
         report.factorizations += 1;
+        made = Some(PredictorFactorization { kind, seconds: seconds + tangent_assembly_seconds });
     }
     let timer = Instant::now();
     linear.solve_approximately(&mut velocity)?;
@@ -60,27 +73,29 @@ pub fn predict_along_tangent(
         return Err(CoreError::NonFinite("the tangent predictor (a singular tangent at the committed state)".into()));
     }
     problem.add_to_free(&velocity, t1 - t0);
-    Ok(kind)
+    Ok(made)
 }
 
 /// dR/dt at the committed state (the problem's trial state at `t0`), a one-sided difference of
 /// step `h` towards `t1`; the first assembly also assembles the tangent when `with_tangent`.
+/// Returns the rate and the seconds of that first assembly.
 fn residual_rate_towards(
     problem: &mut dyn NonlinearProblem,
     (t0, t1): (f64, f64),
     h: f64,
     with_tangent: bool,
     report: &mut IncrementReport,
-) -> Result<Vec<f64>> {
+) -> Result<(Vec<f64>, f64)> {
     let timer = Instant::now();
     let h = h.copysign(t1 - t0);
     problem.set_time(t0);
     problem.assemble(with_tangent)?;
+    let first_assembly_seconds = timer.elapsed().as_secs_f64();
     let at_start = problem.residual().to_vec();
     problem.set_time(t0 + h);
     problem.assemble(false)?;
     let rate = problem.residual().iter().zip(&at_start).map(|(r, r0)| (r - r0) / h).collect();
     problem.set_time(t0);
     report.assembly_seconds += timer.elapsed().as_secs_f64();
-    Ok(rate)
+    Ok((rate, first_assembly_seconds))
 }

@@ -30,7 +30,7 @@ use crate::nonlinear::{IncrementFailure, IncrementReport, NonlinearSolver, Refer
 use crate::problem::NonlinearProblem;
 use crate::record::interface_tracker::{CommitContext, InterfaceInfo};
 use crate::record::{CommittedIncrement, InterfaceTracker, Observer, RunSummary};
-use crate::vector::norm;
+use crate::vector::{dot, norm};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -436,7 +436,10 @@ impl Driver<'_> {
 
     /// Whether a converged load-controlled increment to `target` jumped to another branch:
     /// its displacements moved more than JUMP_RATIO times what the last increment's rate
-    /// predicts. If so, the increment is rolled back and arc length starts.
+    /// predicts, or they turned back against it (du . du_previous < 0) although the load did
+    /// not reverse (the increment started on no breakpoint): a limit point passed inside one
+    /// increment, after which the body relaxes onto another branch. If so, the increment is
+    /// rolled back and the crossing (arc length or dissipation control) starts.
     fn jumped(&mut self, target: f64, du: &[f64]) -> bool {
         let Some(continuation) = self.plan.continuation.filter(|_| !self.arc_blocked) else {
             return false;
@@ -447,7 +450,9 @@ impl Driver<'_> {
         let predicted = norm(&previous.du) * (target - self.t) / previous.dt;
         // round-off in a state that no longer moves (a separated body) is no jump
         let noise = self.nonlinear.settings().tol_displacement * self.largest_displacement;
-        if !(predicted > 0.0 && norm(du) > JUMP_RATIO * predicted && norm(du) > noise) {
+        let too_far = predicted > 0.0 && norm(du) > JUMP_RATIO * predicted;
+        let turned_back = norm(&previous.du) > noise && dot(du, &previous.du) < 0.0 && !self.at_breakpoint(self.t);
+        if !(norm(du) > noise && (too_far || turned_back)) {
             return false;
         }
         self.model.rollback();
@@ -455,6 +460,11 @@ impl Driver<'_> {
         self.cuts_since_commit += 1;
         self.crossing = continuation.start(previous, target);
         true
+    }
+
+    /// Whether time `t` is an amplitude breakpoint or a step end (where the load may reverse).
+    fn at_breakpoint(&self, t: f64) -> bool {
+        self.breakpoints.iter().any(|&b| (b - t).abs() <= 1e-12 * self.t_end.max(1.0))
     }
 
     /// A converged attempt: accept it (or detect a jump), commit, record, adapt the increment.
@@ -475,7 +485,7 @@ impl Driver<'_> {
         }
         self.force_sum.0 += NonlinearProblem::force_norm(&*self.model);
         self.force_sum.1 += 1;
-        let reversal = self.breakpoints.iter().any(|&b| (b - target).abs() <= 1e-12 * self.t_end.max(1.0));
+        let reversal = self.at_breakpoint(target);
         if via == Via::Settling {
             // a snap's displacement is no rate to extrapolate or to start arc length from
             self.last_converged = None;
