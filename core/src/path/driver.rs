@@ -5,7 +5,8 @@
 //!
 //! Hand-over rules: the crossing takes over after `after_cuts` consecutive failed attempts, or
 //! when a converged load-controlled increment moved more than [`JUMP_RATIO`] times what the
-//! last increment's rate predicts (a silent jump to another branch); it hands back once t moves
+//! last increment's rate predicts, or turned back against it while the load did not reverse (a
+//! silent jump to another branch, or a peak stepped over inside the increment); it hands back once t moves
 //! forward past the target that failed, or when it cannot go on inside its step window.
 //!
 //! Snaps: when neither control can go on (load control cut below its minimum increment, arc
