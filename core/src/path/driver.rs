@@ -448,12 +448,13 @@ impl Driver<'_> {
         let Some(previous) = self.last_converged.clone().filter(|p| p.dt > 0.0 && target > self.t) else {
             return false;
         };
-        let predicted = norm(&previous.du) * (target - self.t) / previous.dt;
+        let (moved, moved_before) = (norm(du), norm(&previous.du));
+        let predicted = moved_before * (target - self.t) / previous.dt;
         // round-off in a state that no longer moves (a separated body) is no jump
         let noise = self.nonlinear.settings().tol_displacement * self.largest_displacement;
-        let too_far = predicted > 0.0 && norm(du) > JUMP_RATIO * predicted;
-        let turned_back = norm(&previous.du) > noise && dot(du, &previous.du) < 0.0 && !self.at_breakpoint(self.t);
-        if !(norm(du) > noise && (too_far || turned_back)) {
+        let too_far = predicted > 0.0 && moved > JUMP_RATIO * predicted;
+        let turned_back = moved_before > noise && dot(du, &previous.du) < 0.0 && !self.at_breakpoint(self.t);
+        if !(moved > noise && (too_far || turned_back)) {
             return false;
         }
         self.model.rollback();
