@@ -4,7 +4,7 @@
 
 use crate::build::{BuiltModel, build};
 use crate::case::{
-    ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec, SolverSpec, StartPredictorSpec,
+    ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec, SnapSpec, SolverSpec, StartPredictorSpec,
 };
 use crate::error::{Result, StictionError};
 use std::path::PathBuf;
@@ -12,8 +12,9 @@ use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 use stiction_core::CoreError;
 use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
+use stiction_core::nonlinear::damped_flow::FlowSettings;
 use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
-use stiction_core::path::{Continuation, ContinuationMethod, RunPlan, StartPredictor, run_steps};
+use stiction_core::path::{Continuation, ContinuationMethod, RunPlan, SnapMethod, StartPredictor, run_steps};
 use stiction_core::record::{CyclesWriter, EventsRecorder, HistoryRecorder, Observer, SummaryWriter, VtkRecorder};
 
 pub use stiction_core::record::{InterfaceSummary, RunSummary};
@@ -111,6 +112,13 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         start_predictor: match case.case.solver.start_predictor {
             StartPredictorSpec::Tangent => StartPredictor::Tangent,
             StartPredictorSpec::None => StartPredictor::None,
+        },
+        snap: match case.case.solver.snap {
+            SnapSpec::DampedFlow => SnapMethod::DampedFlow(FlowSettings {
+                tolerance: case.case.solver.snap_tolerance,
+                max_steps: case.case.solver.snap_max_steps,
+            }),
+            SnapSpec::Settle => SnapMethod::Settle,
         },
     };
     let ordering = match case.case.solver.ordering {

@@ -70,6 +70,11 @@ pub trait ElementKernel: Send + Sync {
 
     /// Weight (volume share) of each integration point, for averages.
     fn point_volumes(&self, coords: &[[f64; 3]], out: &mut [f64]);
+
+    /// The consistent mass of unit density, M_(ai)(bj) = delta_ij integral N_a N_b dV
+    /// (axisymmetric: dV = 2 pi r dA), integrated exactly, written row-major (n_dofs)^2 to
+    /// `out`: the L2 metric of displacement fields, which a damped (viscous) flow moves in.
+    fn mass(&self, coords: &[[f64; 3]], out: &mut [f64]);
 }
 
 /// An element evaluation failed.

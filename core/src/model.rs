@@ -76,6 +76,25 @@ impl ElementSet {
 }
 
 impl ElementSet {
+    /// Adds the set's consistent unit-density mass ([`ElementKernel::mass`]) to `values` (on
+    /// the pattern, through the slot maps).
+    fn add_mass(&self, nodes: &[[f64; 3]], values: &mut [f64]) {
+        let (nn, nd) = (self.kernel.n_nodes(), self.kernel.n_dofs());
+        let mut coords = vec![[0.0; 3]; nn];
+        let mut me = vec![0.0; nd * nd];
+        for cell in 0..self.n_cells() {
+            for (a, &node) in self.cell(cell).iter().enumerate() {
+                coords[a] = nodes[node];
+            }
+            self.kernel.mass(&coords, &mut me);
+            for (&s, m) in self.slots[cell * nd * nd..(cell + 1) * nd * nd].iter().zip(&me) {
+                if s != NO_SLOT {
+                    values[s as usize] += m;
+                }
+            }
+        }
+    }
+
     /// Adds the set's internal force to `force` (all dofs) and its tangent to `values` (on the
     /// pattern, through the slot maps); cells are split over the rayon threads, each with its
     /// own accumulators, when the set is large.
@@ -549,6 +568,17 @@ impl Model {
         self.time = self.time_committed;
     }
 
+    /// The consistent mass of unit density of the solid elements on the pattern (free dofs):
+    /// M = sum_e integral N^T N dV, the L2 metric of displacement fields.
+    pub fn mass_matrix(&self) -> Vec<f64> {
+        let pattern = self.pattern.as_ref().expect("Model::finalize must be called before assembly");
+        let mut values = vec![0.0; pattern.nnz()];
+        for set in &self.sets {
+            set.add_mass(&self.mesh.nodes, &mut values);
+        }
+        values
+    }
+
     /// Displacement at the last commit.
     pub fn committed_displacement(&self) -> &[f64] {
         &self.displacement_committed
@@ -705,5 +735,8 @@ impl crate::problem::NonlinearProblem for Model {
     }
     fn damage_dissipation(&self, gradient: &mut [f64]) -> Option<(f64, f64)> {
         Model::damage_dissipation(self, gradient)
+    }
+    fn mass(&self) -> Option<Vec<f64>> {
+        Some(self.mass_matrix())
     }
 }

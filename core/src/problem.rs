@@ -54,4 +54,10 @@ pub trait NonlinearProblem {
     fn damage_dissipation(&self, _gradient: &mut [f64]) -> Option<(f64, f64)> {
         None
     }
+    /// A mass of unit density on [`NonlinearProblem::pattern`] (symmetric positive definite on
+    /// the free dofs): the metric a damped flow moves in, M du/dtau = -r(u). None when the
+    /// problem has none (snaps then settle without a path).
+    fn mass(&self) -> Option<Vec<f64>> {
+        None
+    }
 }

@@ -34,6 +34,9 @@ pub struct SolidKernel {
     cell: CellType,
     kinematics: Kinematics,
     points: Vec<PointData>,
+    /// Points of a rule exact for the mass integrand N_a N_b (x r axisymmetric): degree 4 for
+    /// tet10, 5 for tri6 in r-z.
+    mass_points: Vec<PointData>,
 }
 
 impl SolidKernel {
@@ -64,19 +67,11 @@ impl SolidKernel {
 
     /// Creates the kernel with an explicit rule.
     pub fn with_rule(cell: CellType, kinematics: Kinematics, rule: &QuadratureRule) -> Self {
-        let nn = cell.n_nodes();
-        let points = rule
-            .points
-            .iter()
-            .zip(&rule.weights)
-            .map(|(xi, &weight)| {
-                let mut n = vec![0.0; nn];
-                let mut dn = vec![[0.0; 3]; nn];
-                shape::evaluate(cell, xi, &mut n, &mut dn);
-                PointData { weight, n, dn }
-            })
-            .collect();
-        Self { cell, kinematics, points }
+        let mass_rule = match kinematics {
+            Kinematics::Solid3D => quadrature::tetrahedron_collapsed(4),
+            Kinematics::Axisymmetric => quadrature::triangle_collapsed(4),
+        };
+        Self { cell, kinematics, points: point_data(cell, rule), mass_points: point_data(cell, &mass_rule) }
     }
 
     /// Spatial derivatives dN/dx at a point; returns (|J| * weight * [2 pi r]).
@@ -177,6 +172,21 @@ impl SolidKernel {
     }
 }
 
+/// Shape values and reference derivatives at the points of `rule`.
+fn point_data(cell: CellType, rule: &QuadratureRule) -> Vec<PointData> {
+    let nn = cell.n_nodes();
+    rule.points
+        .iter()
+        .zip(&rule.weights)
+        .map(|(xi, &weight)| {
+            let mut n = vec![0.0; nn];
+            let mut dn = vec![[0.0; 3]; nn];
+            shape::evaluate(cell, xi, &mut n, &mut dn);
+            PointData { weight, n, dn }
+        })
+        .collect()
+}
+
 impl ElementKernel for SolidKernel {
     fn cell_type(&self) -> CellType {
         self.cell
@@ -275,6 +285,24 @@ impl ElementKernel for SolidKernel {
         let mut dndx = [[0.0; 3]; 10];
         for (q, p) in self.points.iter().enumerate() {
             out[q] = self.spatial_derivatives(p, coords, &mut dndx[..self.cell.n_nodes()]).map(|v| v.0).unwrap_or(0.0);
+        }
+    }
+
+    fn mass(&self, coords: &[[f64; 3]], out: &mut [f64]) {
+        let (nn, nd, dpn) = (self.cell.n_nodes(), self.n_dofs(), self.kinematics.dofs_per_node());
+        out.fill(0.0);
+        let mut dndx = [[0.0; 3]; 10];
+        for p in &self.mass_points {
+            // an inverted cell has no mass (its stiffness evaluation reports it)
+            let Ok((dv, _)) = self.spatial_derivatives(p, coords, &mut dndx[..nn]) else { continue };
+            for a in 0..nn {
+                for b in 0..nn {
+                    let m = p.n[a] * p.n[b] * dv;
+                    for c in 0..dpn {
+                        out[(a * dpn + c) * nd + b * dpn + c] += m;
+                    }
+                }
+            }
         }
     }
 }

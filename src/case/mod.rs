@@ -13,6 +13,7 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use stiction_core::nonlinear::NewtonSettings;
+use stiction_core::nonlinear::damped_flow::FlowSettings;
 use stiction_core::path::Incrementation;
 
 /// A whole case.
@@ -413,6 +414,40 @@ pub struct SolverSpec {
     /// Consecutive cuts after which arc-length continuation takes over (default 2).
     #[serde(default = "default_arc_length_after_cuts")]
     pub arc_length_after_cuts: usize,
+    /// How a snap (a jump at fixed load, where the path has no nearby equilibrium) finds the
+    /// state it reaches: "settle" (default: a descent from the committed state; the state of an
+    /// elastic body, but for a yielding body a one-step plastic update whose state depends on
+    /// how the descent went) or "damped-flow" (the body's overdamped motion against a uniform
+    /// viscous drag, M du/dtau = -r(u) with the unit-density mass, integrated to
+    /// `snap_tolerance` with every step committed, so a yielding body or a hysteretic law
+    /// follows the snap's path: the same state whatever the solver or the discretization, at
+    /// tens to hundreds of times the cost).
+    #[serde(default)]
+    pub snap: SnapSpec,
+    /// The damped flow's local error per step relative to the step's move (default 0.03).
+    #[serde(default = "default_snap_tolerance")]
+    pub snap_tolerance: f64,
+    /// The damped flow's steps at most per snap (default 5000); then the run stops with the
+    /// reason.
+    #[serde(default = "default_snap_max_steps")]
+    pub snap_max_steps: usize,
+}
+
+/// How snaps are solved.
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum SnapSpec {
+    #[default]
+    Settle,
+    DampedFlow,
+}
+
+fn default_snap_tolerance() -> f64 {
+    FlowSettings::default().tolerance
+}
+
+fn default_snap_max_steps() -> usize {
+    FlowSettings::default().max_steps
 }
 
 /// Nonlinear solver.
@@ -519,7 +554,8 @@ pub fn defaults_help() -> String {
          tol_displacement = {:e}, line_search = {}, threads = 0 (all cores), cut_factor = {}, \
          growth_factor = {}, continuation = \"none\" (or \"arc-length\", \"dissipation\"), arc_length_after_cuts = {}, \
          method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"), \
-         refactorization_cost_ratio = 0 (measured times), start_predictor = \"tangent\" (or \"none\"); \
+         refactorization_cost_ratio = 0 (measured times), start_predictor = \"tangent\" (or \"none\"), \
+         snap = \"settle\" (or \"damped-flow\"), snap_tolerance = {}, snap_max_steps = {}; \
          interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
          output.directory = out/<name>, output.vtk = true; ensemble.seed = 1, threads_per_member = 0 (auto), \
          concurrent_members = 0 (auto).",
@@ -530,6 +566,8 @@ pub fn defaults_help() -> String {
         Incrementation::DEFAULT_CUT_FACTOR,
         Incrementation::DEFAULT_GROWTH_FACTOR,
         DEFAULT_ARC_LENGTH_AFTER_CUTS,
+        FlowSettings::default().tolerance,
+        FlowSettings::default().max_steps,
         InterfaceSpec::default_max_viscous_share(),
     )
 }

@@ -88,6 +88,12 @@ fn solver(case: &LoadedCase) -> Result<()> {
             format!("must be 0 (measured costs) or a finite ratio > 0, got {}", s.refactorization_cost_ratio),
         ));
     }
+    if !(s.snap_tolerance > 0.0 && s.snap_tolerance < 1.0) {
+        return Err(case.error("solver.snap_tolerance", format!("must be in (0, 1), got {}", s.snap_tolerance)));
+    }
+    if s.snap_max_steps == 0 {
+        return Err(case.error("solver.snap_max_steps", "must be at least 1"));
+    }
     Ok(())
 }
 

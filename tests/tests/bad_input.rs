@@ -68,6 +68,17 @@ fn unknown_key_from_set_is_rejected() {
 }
 
 #[test]
+fn a_snap_method_or_tolerance_out_of_range_names_the_key_and_the_choices() {
+    let p = scratch("snap.toml", &base_case(&cantilever_geo()));
+    let (msg, code) = failure(&p, &["solver.snap=\"dynamic\""]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("snap") && msg.contains("settle") && msg.contains("damped-flow"), "{msg}");
+    let (msg, code) = failure(&p, &["solver.snap_tolerance=1.5"]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("solver.snap_tolerance") && msg.contains("(0, 1)") && msg.contains("1.5"), "{msg}");
+}
+
+#[test]
 fn missing_group_lists_the_known_groups() {
     let p =
         scratch("missing-group.toml", &base_case(&cantilever_geo()).replace("group = \"clamp\"", "group = \"clmp\""));

@@ -4,7 +4,9 @@
 //! elastic Lennard-Jones sphere at w = 3 J/m^2 (Tabor 2.1) started inside the jump-in range
 //! (3 z0 from the pole, where Newton cannot find an equilibrium at t = 0) and started far away
 //! (1.2 nm, jumping in on the way) must reach the same state at the same position of the flat,
-//! and the same most tensile force on the contact branch.
+//! and the same most tensile force on the contact branch. The two ways to solve a snap, by
+//! descent (the default) and along the damped flow, must land on the same state of this elastic
+//! body (one stable state in reach: its path does not matter).
 
 use stiction_tests::run_case;
 
@@ -25,9 +27,10 @@ fn at_end_of_loading(dir: &std::path::Path) -> (f64, f64) {
 #[test]
 fn a_start_inside_the_jump_in_range_snaps_to_the_state_a_far_start_reaches() {
     // both end the loading with the flat 0.3 nm from the undeformed pole
-    let run = |gap: &str, approach: &str, label: &str| {
+    let run = |gap: &str, approach: &str, snap: &str, label: &str| {
         let gap_set = format!("interfaces.0.initial_gap={gap}");
         let approach_set = format!("interfaces.0.approach={approach}");
+        let snap_set = format!("solver.snap=\"{snap}\"");
         let sets = [
             "interfaces.0.parameters.w=3.0",
             "mesh.parameters.h_contact=3.0",
@@ -35,12 +38,14 @@ fn a_start_inside_the_jump_in_range_snaps_to_the_state_a_far_start_reaches() {
             "steps.1.end_time=1.02",
             gap_set.as_str(),
             approach_set.as_str(),
+            snap_set.as_str(),
         ];
         run_case("cases/validation/lj-sphere.toml", &sets, label).1
     };
-    let near = run("0.507", "0.207", "snap-near-start");
-    let far = run("1.2", "0.9", "snap-far-start");
-    for s in [&near, &far] {
+    let near = run("0.507", "0.207", "settle", "snap-near-start");
+    let far = run("1.2", "0.9", "settle", "snap-far-start");
+    let flowed = run("0.507", "0.207", "damped-flow", "snap-near-start-flow");
+    for s in [&near, &far, &flowed] {
         assert_eq!(s.status, "completed", "{:?}", s.message);
         assert!(s.snaps >= 1, "no snap in {}", s.output_directory.display());
     }
@@ -49,6 +54,9 @@ fn a_start_inside_the_jump_in_range_snaps_to_the_state_a_far_start_reaches() {
     assert!((0.507 - a_near - (1.2 - a_far)).abs() < 1e-9, "the flat is not at the same place");
     println!("force at the common position: near start {f_near}, far start {f_far}");
     assert!((f_near - f_far).abs() < 1e-6 * f_far.abs(), "{f_near} vs {f_far}");
+    let (a_flow, f_flow) = at_end_of_loading(&flowed.output_directory);
+    println!("force at the end of loading after the damped-flow snap: {f_flow} (descent: {f_near})");
+    assert!((a_flow - a_near).abs() < 1e-12 && (f_flow - f_near).abs() < 1e-6 * f_near.abs(), "{f_flow} vs {f_near}");
     let (p_near, p_far) = (near.interfaces[0].pull_off_force, far.interfaces[0].pull_off_force);
     println!("most tensile force: near start {p_near}, far start {p_far}");
     // sampled at different positions along the same branch (increments of 0.0021 / 0.009 nm)

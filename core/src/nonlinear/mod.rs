@@ -1,12 +1,14 @@
 //! Nonlinear solvers: they drive a [`NonlinearProblem`] to equilibrium at a given pseudo-time
 //! with a [`LinearSolver`], and know nothing of steps, outputs or the case. Full Newton is
 //! [`NewtonSolver`]; [`arc_length`] solves one increment on a constraint in (u, t) for path
-//! following, [`dissipation`] one on the energy its damage dissipates; [`settle`] settles on a stable equilibrium where the path has no nearby
-//! one (a snap). A quasi-Newton or Krylov-on-a-stale-factor strategy is a new [`NonlinearSolver`].
+//! following, [`dissipation`] one on the energy its damage dissipates; where the path has no
+//! nearby equilibrium (a snap), [`damped_flow`] follows the body's overdamped motion to the
+//! stable state it reaches and [`settle`] descends to one. A quasi-Newton or Krylov-on-a-stale-factor strategy is a new [`NonlinearSolver`].
 
 pub mod arc_length;
 mod bordered;
 pub mod convergence;
+pub mod damped_flow;
 pub mod dissipation;
 pub mod newton;
 pub mod quasi_newton;
@@ -49,6 +51,11 @@ pub enum IncrementFailure {
     /// A dissipation-controlled increment found nothing damaging within its reach (the
     /// constraint has no gradient).
     NoDissipation,
+    /// A damped flow took its most steps without coming to rest.
+    FlowUnsettled {
+        steps: usize,
+        residual: f64,
+    },
     Error(CoreError),
 }
 
@@ -67,6 +74,10 @@ impl std::fmt::Display for IncrementFailure {
             IncrementFailure::NoDissipation => {
                 write!(f, "no damage within reach of the increment: the dissipation cannot set its length")
             }
+            IncrementFailure::FlowUnsettled { steps, residual } => write!(
+                f,
+                "the damped flow had not come to rest after {steps} steps (residual {residual:.3e}; raise solver.snap_max_steps or solver.snap_tolerance)"
+            ),
             IncrementFailure::Error(e) => write!(f, "{e}"),
         }
     }

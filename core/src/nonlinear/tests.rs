@@ -92,6 +92,9 @@ impl NonlinearProblem for OneDof {
         (self.u, self.t) = self.committed;
         self.solution = [self.u, self.t];
     }
+    fn mass(&self) -> Option<Vec<f64>> {
+        Some(vec![1.0])
+    }
 }
 
 /// r = u^3 - 3 u^2 + 2.5 u - t: limit points at u = 1 -+ sqrt(6)/6.
@@ -229,6 +232,37 @@ fn settling_finds_the_stable_equilibrium_downhill_and_never_the_unstable_one() {
     p.set_free_values(&[-0.4]);
     settle(&mut p, &mut linear, &settings(), ReferenceScales::default()).unwrap();
     assert!((p.u - root(0.6, 1.5, 0.5)).abs() < 1e-10, "{}", p.u);
+}
+
+/// r = sin u + 1/2: stable equilibria at -pi/6 + 2 pi n, unstable ones at 7 pi/6 + 2 pi n.
+fn periodic(u: f64, _t: f64) -> (f64, f64) {
+    (u.sin() + 0.5, u.cos())
+}
+
+/// The damped flow du/dtau = -r(u) runs downhill to the first stable equilibrium on its way,
+/// however far: from either side of an unstable one it ends on the stable neighbour on that
+/// side (closed form), and it ends there with the solver's tolerance.
+#[test]
+fn the_damped_flow_ends_on_the_stable_equilibrium_its_path_reaches() {
+    use super::damped_flow::{FlowSettings, damped_flow};
+    use super::newton::NewtonSolver;
+    let below = -std::f64::consts::PI / 6.0;
+    let above = below + 2.0 * std::f64::consts::PI;
+    // 3.6 and 3.7 lie either side of the unstable root 7 pi / 6 = 3.665
+    for (start, expected) in [(2.0, below), (3.6, below), (3.7, above), (4.0, above), (-2.0, below)] {
+        let mut p = OneDof::new(periodic);
+        let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+        p.set_free_values(&[start]);
+        p.commit();
+        let mass = p.mass().unwrap();
+        let mut solver = NewtonSolver { settings: settings() };
+        let settings = FlowSettings::default();
+        let scales = ReferenceScales::default();
+        let flow = damped_flow(&mut p, &mass, &mut linear, &mut solver, scales, &settings, &mut |_| {})
+            .unwrap_or_else(|e| panic!("from {start}: {e}"));
+        assert!((p.u - expected).abs() < 1e-9, "from {start}: ended at {} instead of {expected}", p.u);
+        assert!(flow.steps > 3 && flow.steps < 200, "from {start}: {} steps", flow.steps);
+    }
 }
 
 /// A bond that damages (bilinear: stiffness K_BOND up to the opening G0, linear softening to

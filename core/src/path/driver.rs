@@ -11,9 +11,11 @@
 //!
 //! Snaps: when neither control can go on (load control cut below its minimum increment, arc
 //! length stalled or unable to start, e.g. a run that starts inside the jump-in range), the
-//! driver settles the model just past the committed time on a stable equilibrium
-//! ([`crate::nonlinear::settle`]): the stable state the displacement-controlled
-//! system snaps to. It is committed as a jump and load control goes on from it. At most
+//! driver moves the model just past the committed time to the stable state the
+//! displacement-controlled system snaps to ([`SnapMethod`]: by descent,
+//! [`crate::nonlinear::settle`], or along the body's overdamped motion,
+//! [`crate::nonlinear::damped_flow`], whose steps are committed so that plastic flow follows
+//! the snap's path). The state is committed as a jump and load control goes on from it. At most
 //! [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row without a load step in between; then the run
 //! stops with the reason.
 
@@ -26,6 +28,7 @@ use crate::error::{CoreError, Result};
 use crate::linear_solver::LinearSolver;
 use crate::model::Model;
 use crate::nonlinear::arc_length::PreviousIncrement;
+use crate::nonlinear::damped_flow::{FlowReport, FlowSettings, damped_flow};
 use crate::nonlinear::settle::settle;
 use crate::nonlinear::{IncrementFailure, IncrementReport, NonlinearSolver, ReferenceScales};
 use crate::problem::NonlinearProblem;
@@ -41,6 +44,9 @@ use std::time::Instant;
 /// A load-controlled increment whose displacement increment exceeds this multiple of the one
 /// the previous increment's rate predicts counts as a jump over a limit point.
 pub const JUMP_RATIO: f64 = 5.0;
+
+/// A damped-flow snap tells the observers how far it is every this many steps.
+const FLOW_PROGRESS_EVERY: usize = 20;
 
 /// Snaps in a row (no ordinary increment converging in between) after which the run stops.
 pub const MAX_SNAPS_WITHOUT_PROGRESS: usize = 3;
@@ -78,6 +84,20 @@ pub struct RunPlan {
     pub interrupt: Option<Arc<AtomicBool>>,
     /// The predictor of the increments with no earlier rate to extrapolate.
     pub start_predictor: StartPredictor,
+    /// How a snap finds the state it reaches.
+    pub snap: SnapMethod,
+}
+
+/// How a snap (a jump at a fixed load to the stable state the system reaches) is solved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SnapMethod {
+    /// Along the overdamped motion M du/dtau = -r(u) ([`damped_flow`]): the state depends
+    /// on the path where the body yields or a law is hysteretic, and this path has no free
+    /// parameter and converges with the mesh. Problems without a mass settle instead.
+    DampedFlow(FlowSettings),
+    /// By descent from the committed state ([`settle`]): cheaper, the same state for an
+    /// elastic body with one stable state in reach, a one-step plastic update otherwise.
+    Settle,
 }
 
 /// Path following at limit points.
@@ -146,6 +166,7 @@ pub fn run_steps(
         force_sum: (0.0, 0),
         since_output: 0,
         largest_displacement: 0.0,
+        mass: None,
         model,
         plan,
         linear,
@@ -234,6 +255,8 @@ struct Driver<'a> {
     since_output: usize,
     /// The largest displacement norm committed so far (the scale of round-off in increments).
     largest_displacement: f64,
+    /// The unit-density mass on the pattern (made at the first damped snap).
+    mass: Option<Vec<f64>>,
 }
 
 /// What to do after handling an attempt.
@@ -409,18 +432,16 @@ impl Driver<'_> {
         };
         let target = self.load.target(&window);
         self.model.set_time(target);
-        let scales = self.scales();
-        let settings = self.nonlinear.settings().clone();
-        let settled = settle(self.model, &mut *self.linear, &settings, scales);
+        let (settled, damped) = self.solve_snap(&step.name, target);
         let text = match &settled {
-            Ok(r) => format!("{}: snapped at t = {target:.6} ({} descent steps)", step.name, r.iterations),
+            Ok((_, how)) => format!("{}: snapped at t = {target:.6} ({how})", step.name),
             Err(_) => format!("{}: no stable state found at t = {target:.6}", step.name),
         };
         for o in self.observers.iter_mut() {
             o.message(&text);
         }
         match settled {
-            Ok(report) => {
+            Ok((report, _)) => {
                 self.snaps_in_a_row += 1;
                 self.summary.snaps += 1;
                 self.converged(si, report, Via::Settling)
@@ -429,10 +450,52 @@ impl Driver<'_> {
                 self.model.rollback();
                 // a law that fails the same way while settling is said once
                 let same = matches!(&e, IncrementFailure::Error(CoreError::LawFailure { message, .. }) if reason.contains(message.as_str()));
-                let why = if same { "failed the same way".to_string() } else { format!("failed: {e}") };
+                let why = match (same, damped) {
+                    (true, _) => "failed the same way".to_string(),
+                    (false, false) => format!("failed: {e}"),
+                    (false, true) => format!(
+                        "failed along the damped flow ({e}; the model is left at the flow's last step, which is not written)"
+                    ),
+                };
                 Ok(Flow::Stop(format!("{reason}; settling on a stable state at t = {target:.6} {why}")))
             }
         }
+    }
+
+    /// Solves the snap at `target` from the committed state by the plan's [`SnapMethod`]: the
+    /// costs and how it went, or why it failed, and whether it was a damped flow.
+    fn solve_snap(
+        &mut self,
+        step_name: &str,
+        target: f64,
+    ) -> (std::result::Result<(IncrementReport, String), IncrementFailure>, bool) {
+        let scales = self.scales();
+        let flow = match self.plan.snap {
+            SnapMethod::DampedFlow(flow) => {
+                if self.mass.is_none() {
+                    self.mass = NonlinearProblem::mass(&*self.model);
+                }
+                self.mass.as_deref().map(|mass| (flow, mass))
+            }
+            SnapMethod::Settle => None,
+        };
+        let Some((flow, mass)) = flow else {
+            let settings = self.nonlinear.settings().clone();
+            let settled = settle(self.model, &mut *self.linear, &settings, scales)
+                .map(|r| (r.clone(), format!("{} descent steps", r.iterations)));
+            return (settled, false);
+        };
+        let observers = &mut *self.observers;
+        let mut progress = |f: &FlowReport| {
+            if f.steps.is_multiple_of(FLOW_PROGRESS_EVERY) {
+                let text = format!("{step_name}: snapping at t = {target:.6}, {} damped flow steps", f.steps);
+                observers.iter_mut().for_each(|o| o.message(&text));
+            }
+        };
+        let flowed =
+            damped_flow(self.model, mass, &mut *self.linear, &mut *self.nonlinear, scales, &flow, &mut progress)
+                .map(|f| (f.costs, format!("{} damped flow steps, {} redone", f.steps, f.rejected)));
+        (flowed, true)
     }
 
     /// Whether a converged load-controlled increment to `target` jumped to another branch:

@@ -14,7 +14,7 @@ pub mod step;
 
 pub use arc_length_control::ArcLengthControl;
 pub use dissipation_control::DissipationControl;
-pub use driver::{Continuation, ContinuationMethod, RunPlan, run_steps};
+pub use driver::{Continuation, ContinuationMethod, RunPlan, SnapMethod, run_steps};
 pub use load_control::{LoadControl, StartPredictor};
 pub use step::{Incrementation, StepPlan};
 

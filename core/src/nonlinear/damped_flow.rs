@@ -1,0 +1,327 @@
+//! A snap as a damped flow. Where the path has no nearby equilibrium (an adhesive surface
+//! snapping into contact or off it, a run started inside the jump-in range), the body moves at
+//! the fixed load as if against a uniform viscous drag, overdamped (no inertia):
+//!
+//!   M du/dtau = -r(u),
+//!
+//! with M the consistent mass of unit density ([`NonlinearProblem::mass`]: the L2 metric of
+//! displacement fields) and tau a fictitious time. The drag coefficient only rescales tau, so
+//! the path in u has no free parameter, and it converges with the mesh (M discretizes the L2
+//! product): a 3D body and its axisymmetric section follow the same path. Every step is
+//! committed, so plastic flow and hysteretic interface laws follow the path (ABAQUS's
+//! `*STATIC, STABILIZE` damps with the same mass-proportional forces, with a damping factor
+//! instead of an accuracy). The flow ends on the stable equilibrium the snap reaches.
+//!
+//! Time stepping: the first step is backward Euler, the later ones variable-step BDF2 (both
+//! L-stable: the stiff modes of an elastic body are damped out, not rung); a step of length h solves
+//! M (u - s)/(beta h) + r(u) = 0 ([`Formula`]: s and beta from the last two states) with the
+//! run's nonlinear solver ([`DampedStep`]: tangent K + M/(beta h); the quasi-Newton solver
+//! reuses one factor over several steps) from an explicit predictor. The velocity
+//! (u - s)/(beta h) that a step ends with is the flow's, v = -M^{-1} r(u), exactly; at the start
+//! it comes from a factor of M. Accuracy: the local error (for backward Euler (h/2) ||v_{n+1} -
+//! v_n||_inf, for BDF2 Milne's estimate from the predictor) is kept below `tolerance` times
+//! the step's move ||u_{n+1} - u_n||_inf; a step with more than twice that is redone shorter,
+//! and the next h is h * 0.9 (tolerance move / error)^(1/(order + 1)), within [h/5, 2h] (BDF2
+//! is zero-stable for step ratios below 1 + sqrt 2). The first h is the one the second
+//! derivative at the start, a_0 = -M^{-1} K v_0, allows: h_0 = 2 tolerance ||v_0|| / ||a_0||.
+//!
+//! End: when a step's static residual r(u_{n+1}) = -M v_{n+1} passes the solver's residual test,
+//! or when the move still to come, estimated from the velocity's decay ratio
+//! q = ||v_{n+1}|| / ||v_n|| < 1 as ||u_{n+1} - u_n|| q / (1 - q), is below `tolerance` times the
+//! snap's move so far (or below what the solver's correction test resolves): the end is then solved for
+//! directly (r(u) = 0 by the same solver) and accepted if it moved less than twice that (else the flow
+//! goes on). A step that fails is cut fourfold, at most [`MAX_CUTS_IN_A_ROW`] times in a row.
+
+use super::convergence::ReferenceScales;
+use super::{IncrementFailure, IncrementReport, NonlinearSolver};
+use crate::error::Result;
+use crate::linear_solver::LinearSolver;
+use crate::problem::NonlinearProblem;
+use crate::sparse::SparsityPattern;
+use crate::vector::norm;
+use std::time::Instant;
+
+/// Failed steps in a row (each cut fourfold) after which the flow gives up.
+pub const MAX_CUTS_IN_A_ROW: usize = 12;
+
+/// How accurately, and how long at most, the flow is followed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlowSettings {
+    /// The local error allowed per step, relative to the step's move (see the module
+    /// documentation).
+    pub tolerance: f64,
+    /// Accepted steps at most.
+    pub max_steps: usize,
+}
+
+impl Default for FlowSettings {
+    fn default() -> Self {
+        Self { tolerance: 0.03, max_steps: 5000 }
+    }
+}
+
+/// What a flow took.
+#[derive(Debug, Clone, Default)]
+pub struct FlowReport {
+    /// Newton iterations, factorizations and seconds of all its steps.
+    pub costs: IncrementReport,
+    /// Accepted (committed) steps.
+    pub steps: usize,
+    /// Steps redone shorter (too inaccurate, or not converged).
+    pub rejected: usize,
+}
+
+/// One backward-Euler step of the flow as a problem of its own: residual r(u) + M (u - u_n)/h,
+/// tangent K + M/h; the state life cycle is the wrapped problem's.
+struct DampedStep<'a> {
+    inner: &'a mut dyn NonlinearProblem,
+    mass: &'a [f64],
+    start: &'a [f64],
+    inverse_h: f64,
+    residual: Vec<f64>,
+    tangent: Vec<f64>,
+    drag: Vec<f64>,
+}
+
+impl NonlinearProblem for DampedStep<'_> {
+    fn n_free(&self) -> usize {
+        self.inner.n_free()
+    }
+    fn pattern(&self) -> &SparsityPattern {
+        self.inner.pattern()
+    }
+    fn set_time(&mut self, t: f64) {
+        self.inner.set_time(t);
+    }
+    fn time(&self) -> f64 {
+        self.inner.time()
+    }
+    fn assemble(&mut self, with_tangent: bool) -> Result<()> {
+        self.inner.assemble(with_tangent)?;
+        let moved: Vec<f64> = self.inner.free_values().iter().zip(self.start).map(|(u, s)| u - s).collect();
+        self.drag.resize(moved.len(), 0.0);
+        self.inner.pattern().multiply(self.mass, &moved, &mut self.drag);
+        self.residual.clear();
+        self.residual.extend(self.inner.residual().iter().zip(&self.drag).map(|(r, d)| r + self.inverse_h * d));
+        if with_tangent {
+            self.tangent.clear();
+            self.tangent.extend(self.inner.tangent().iter().zip(self.mass).map(|(k, m)| k + self.inverse_h * m));
+        }
+        Ok(())
+    }
+    fn residual(&self) -> &[f64] {
+        &self.residual
+    }
+    fn tangent(&self) -> &[f64] {
+        &self.tangent
+    }
+    fn force_norm(&self) -> f64 {
+        self.inner.force_norm()
+    }
+    fn solution(&self) -> &[f64] {
+        self.inner.solution()
+    }
+    fn add_to_free(&mut self, du: &[f64], alpha: f64) {
+        self.inner.add_to_free(du, alpha);
+    }
+    fn free_values(&self) -> Vec<f64> {
+        self.inner.free_values()
+    }
+    fn set_free_values(&mut self, values: &[f64]) {
+        self.inner.set_free_values(values);
+    }
+    fn increment_since_commit(&self) -> Vec<f64> {
+        self.inner.increment_since_commit()
+    }
+    fn commit(&mut self) {
+        self.inner.commit();
+    }
+    fn rollback(&mut self) {
+        self.inner.rollback();
+    }
+}
+
+/// max_i |x_i|.
+fn largest(x: &[f64]) -> f64 {
+    x.iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
+/// The flow's velocity at the problem's assembled state, v = -M^{-1} r, and the first step
+/// h_0 = 2 tolerance ||v|| / ||M^{-1} K v|| (one factorization of M).
+fn start_velocity(
+    problem: &dyn NonlinearProblem,
+    mass: &[f64],
+    linear: &mut dyn LinearSolver,
+    tolerance: f64,
+    report: &mut IncrementReport,
+) -> Result<(Vec<f64>, f64)> {
+    let timer = Instant::now();
+    linear.factorize(problem.pattern(), mass)?;
+    report.factorization_seconds += timer.elapsed().as_secs_f64();
+    report.factorizations += 1;
+    let timer = Instant::now();
+    let mut v: Vec<f64> = problem.residual().iter().map(|r| -r).collect();
+    linear.solve_in_place(&mut v)?;
+    let mut a = vec![0.0; v.len()];
+    problem.pattern().multiply(problem.tangent(), &v, &mut a);
+    linear.solve_in_place(&mut a)?;
+    report.solve_seconds += timer.elapsed().as_secs_f64();
+    let (speed, acceleration) = (largest(&v), largest(&a));
+    let h = if acceleration > 0.0 { 2.0 * tolerance * speed / acceleration } else { 1.0 };
+    Ok((v, h))
+}
+
+/// The step-size factor for a step of a formula of order `order` that moved `moved` with local
+/// error `error` (which scales as h^(order + 1)).
+fn step_factor(tolerance: f64, moved: f64, error: f64, order: i32, cap: f64) -> f64 {
+    let exponent = 1.0 / f64::from(order + 1);
+    if error > 0.0 { (0.9 * (tolerance * moved / error).powf(exponent)).clamp(0.2, cap) } else { cap }
+}
+
+/// The last accepted step: where it started, the velocity there, and its length.
+struct PreviousStep {
+    u: Vec<f64>,
+    v: Vec<f64>,
+    h: f64,
+}
+
+/// One step's formula, M (u - start) / (beta h) + r(u) = 0, and its explicit predictor.
+struct Formula {
+    start: Vec<f64>,
+    beta: f64,
+    predicted: Vec<f64>,
+    order: i32,
+}
+
+impl Formula {
+    /// Backward Euler from (u_n, v_n) for the first step; after it variable-step BDF2 with
+    /// w = h / h_prev: start = ((1 + w)^2 u_n - w^2 u_prev) / (1 + 2 w), beta = (1 + w) / (1 + 2 w),
+    /// predicted by u_n + h v_n + h^2/2 (v_n - v_prev) / h_prev.
+    fn new(u_n: &[f64], v_n: &[f64], previous: Option<&PreviousStep>, h: f64) -> Self {
+        let Some(p) = previous else {
+            let predicted = u_n.iter().zip(v_n).map(|(u, v)| u + h * v).collect();
+            return Self { start: u_n.to_vec(), beta: 1.0, predicted, order: 1 };
+        };
+        let w = h / p.h;
+        let d = 1.0 + 2.0 * w;
+        let start = u_n.iter().zip(&p.u).map(|(u, up)| ((1.0 + w).powi(2) * u - w * w * up) / d).collect();
+        let predicted = (0..u_n.len()).map(|i| u_n[i] + h * v_n[i] + 0.5 * h * h * (v_n[i] - p.v[i]) / p.h).collect();
+        Self { start, beta: (1.0 + w) / d, predicted, order: 2 }
+    }
+
+    /// The local error of the step that ended at `u` with velocity `v_new` from velocity `v_n`:
+    /// (h/2) ||v_new - v_n|| for backward Euler; for BDF2 Milne's estimate from the predictor,
+    /// 2/9 / (2/9 + 5/12) ||u - predicted|| (the error constants of BDF2 and of the predictor).
+    fn error(&self, u: &[f64], v_new: &[f64], v_n: &[f64], h: f64) -> f64 {
+        if self.order == 1 {
+            0.5 * h * largest(&v_new.iter().zip(v_n).map(|(a, b)| a - b).collect::<Vec<_>>())
+        } else {
+            8.0 / 23.0 * largest(&u.iter().zip(&self.predicted).map(|(a, b)| a - b).collect::<Vec<_>>())
+        }
+    }
+}
+
+/// Follows the flow at the problem's current time from its trial state (the committed one) to
+/// a stable equilibrium (see the module documentation); `mass` is [`NonlinearProblem::mass`].
+/// Every accepted step is committed; on success the problem holds the end state as its trial
+/// state (not committed). On failure the problem is at the last committed step. `progress` is
+/// told of every accepted step (long flows report how far they are).
+pub fn damped_flow(
+    problem: &mut dyn NonlinearProblem,
+    mass: &[f64],
+    linear: &mut dyn LinearSolver,
+    solver: &mut dyn NonlinearSolver,
+    scales: ReferenceScales,
+    settings: &FlowSettings,
+    progress: &mut dyn FnMut(&FlowReport),
+) -> std::result::Result<FlowReport, IncrementFailure> {
+    let newton = solver.settings().clone();
+    let tol = settings.tolerance;
+    let mut flow = FlowReport::default();
+    let t = problem.time();
+    let timer = Instant::now();
+    problem.assemble(true)?;
+    flow.costs.assembly_seconds += timer.elapsed().as_secs_f64();
+    let force_scale = |p: &dyn NonlinearProblem| newton.force_scale(p.force_norm(), scales);
+    if newton.residual_negligible(norm(problem.residual()), force_scale(problem)) {
+        return Ok(flow);
+    }
+    // a committed step solves its equation exactly, so r(u_n) = -M v_n is its static residual:
+    // at rest when that passes the solver's residual test
+    let at_rest = |p: &dyn NonlinearProblem| newton.residual_converged(norm(p.residual()), force_scale(p));
+    // moves below this are below what the solver's correction test resolves
+    let resolution = newton.tol_displacement * 1e-3 * scales.displacement;
+    let (mut v, mut h) = start_velocity(problem, mass, linear, tol, &mut flow.costs)?;
+    let origin = problem.free_values();
+    let mut u_n = origin.clone();
+    let mut previous: Option<PreviousStep> = None;
+    let mut cuts_in_a_row = 0;
+    // the end is tried directly when the move to come is below this too (halved after a miss)
+    let mut tail_bar = f64::INFINITY;
+    while flow.steps < settings.max_steps {
+        let formula = Formula::new(&u_n, &v, previous.as_ref(), h);
+        problem.set_free_values(&formula.predicted);
+        let mut step = DampedStep {
+            inner: &mut *problem,
+            mass,
+            start: &formula.start,
+            inverse_h: 1.0 / (formula.beta * h),
+            residual: Vec::new(),
+            tangent: Vec::new(),
+            drag: Vec::new(),
+        };
+        if let Err(e) = solver.solve(&mut step, linear, t, scales).map(|report| flow.costs.add_costs(&report)) {
+            problem.rollback();
+            flow.rejected += 1;
+            cuts_in_a_row += 1;
+            if cuts_in_a_row > MAX_CUTS_IN_A_ROW {
+                return Err(e);
+            }
+            h *= 0.25;
+            continue;
+        }
+        let u = problem.free_values();
+        let v_new: Vec<f64> = u.iter().zip(&formula.start).map(|(a, b)| (a - b) / (formula.beta * h)).collect();
+        let moved = largest(&u.iter().zip(&u_n).map(|(a, b)| a - b).collect::<Vec<_>>());
+        let error = formula.error(&u, &v_new, &v, h);
+        if error > 2.0 * tol * moved {
+            problem.rollback();
+            flow.rejected += 1;
+            h *= step_factor(tol, moved, error, formula.order, 0.9);
+            continue;
+        }
+        cuts_in_a_row = 0;
+        problem.commit();
+        flow.steps += 1;
+        progress(&flow);
+        let decay = norm(&v_new) / norm(&v);
+        let (u_prev, v_prev) = (std::mem::replace(&mut u_n, u), std::mem::replace(&mut v, v_new));
+        previous = Some(PreviousStep { u: u_prev, v: v_prev, h });
+        // BDF2 stays zero-stable for step ratios below 1 + sqrt 2
+        h *= step_factor(tol, moved, error, formula.order, 2.0);
+        // the committed state's residual is the static one, r(u_n) = -M v_n
+        if at_rest(problem) {
+            return Ok(flow);
+        }
+        let to_come = if decay < 1.0 { moved * decay / (1.0 - decay) } else { f64::INFINITY };
+        let so_far = largest(&u_n.iter().zip(&origin).map(|(a, b)| a - b).collect::<Vec<_>>());
+        let negligible = (tol * so_far).max(resolution);
+        if to_come < negligible && to_come < tail_bar {
+            // a failed or too long direct solve is a miss: the flow goes on
+            if let Ok(report) = solver.solve(problem, linear, t, scales) {
+                flow.costs.add_costs(&report);
+                let end = problem.free_values();
+                let last = largest(&end.iter().zip(&u_n).map(|(a, b)| a - b).collect::<Vec<_>>());
+                if last <= 2.0 * negligible {
+                    return Ok(flow);
+                }
+            }
+            problem.rollback();
+            tail_bar = 0.5 * to_come;
+        }
+    }
+    Err(IncrementFailure::FlowUnsettled { steps: flow.steps, residual: norm(problem.residual()) })
+}
+
+#[cfg(test)]
+mod tests;
