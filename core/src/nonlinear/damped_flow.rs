@@ -146,6 +146,11 @@ fn largest(x: &[f64]) -> f64 {
     x.iter().fold(0.0, |m, v| m.max(v.abs()))
 }
 
+/// max_i |a_i - b_i|.
+fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).fold(0.0, |m, (a, b)| m.max((a - b).abs()))
+}
+
 /// The flow's velocity at the problem's assembled state, v = -M^{-1} r, and the first step
 /// h_0 = 2 tolerance ||v|| / ||M^{-1} K v|| (one factorization of M).
 fn start_velocity(
@@ -214,9 +219,9 @@ impl Formula {
     /// 2/9 / (2/9 + 5/12) ||u - predicted|| (the error constants of BDF2 and of the predictor).
     fn error(&self, u: &[f64], v_new: &[f64], v_n: &[f64], h: f64) -> f64 {
         if self.order == 1 {
-            0.5 * h * largest(&v_new.iter().zip(v_n).map(|(a, b)| a - b).collect::<Vec<_>>())
+            0.5 * h * largest_difference(v_new, v_n)
         } else {
-            8.0 / 23.0 * largest(&u.iter().zip(&self.predicted).map(|(a, b)| a - b).collect::<Vec<_>>())
+            8.0 / 23.0 * largest_difference(u, &self.predicted)
         }
     }
 }
@@ -251,6 +256,8 @@ pub fn damped_flow(
     let at_rest = |p: &dyn NonlinearProblem| newton.residual_converged(norm(p.residual()), force_scale(p));
     // moves below this are below what the solver's correction test resolves
     let resolution = newton.tol_displacement * 1e-3 * scales.displacement;
+    // the static residual of the last committed state, which a failure reports
+    let mut committed_residual = norm(problem.residual());
     let (mut v, mut h) = start_velocity(problem, mass, linear, tol, &mut flow.costs)?;
     let origin = problem.free_values();
     let mut u_n = origin.clone();
@@ -282,7 +289,7 @@ pub fn damped_flow(
         }
         let u = problem.free_values();
         let v_new: Vec<f64> = u.iter().zip(&formula.start).map(|(a, b)| (a - b) / (formula.beta * h)).collect();
-        let moved = largest(&u.iter().zip(&u_n).map(|(a, b)| a - b).collect::<Vec<_>>());
+        let moved = largest_difference(&u, &u_n);
         let error = formula.error(&u, &v_new, &v, h);
         if error > 2.0 * tol * moved {
             problem.rollback();
@@ -300,18 +307,19 @@ pub fn damped_flow(
         // BDF2 stays zero-stable for step ratios below 1 + sqrt 2
         h *= step_factor(tol, moved, error, formula.order, 2.0);
         // the committed state's residual is the static one, r(u_n) = -M v_n
+        committed_residual = norm(problem.residual());
         if at_rest(problem) {
             return Ok(flow);
         }
         let to_come = if decay < 1.0 { moved * decay / (1.0 - decay) } else { f64::INFINITY };
-        let so_far = largest(&u_n.iter().zip(&origin).map(|(a, b)| a - b).collect::<Vec<_>>());
+        let so_far = largest_difference(&u_n, &origin);
         let negligible = (tol * so_far).max(resolution);
         if to_come < negligible && to_come < tail_bar {
             // a failed or too long direct solve is a miss: the flow goes on
             if let Ok(report) = solver.solve(problem, linear, t, scales) {
                 flow.costs.add_costs(&report);
                 let end = problem.free_values();
-                let last = largest(&end.iter().zip(&u_n).map(|(a, b)| a - b).collect::<Vec<_>>());
+                let last = largest_difference(&end, &u_n);
                 if last <= 2.0 * negligible {
                     return Ok(flow);
                 }
@@ -320,7 +328,7 @@ pub fn damped_flow(
             tail_bar = 0.5 * to_come;
         }
     }
-    Err(IncrementFailure::FlowUnsettled { steps: flow.steps, residual: norm(problem.residual()) })
+    Err(IncrementFailure::FlowUnsettled { steps: flow.steps, residual: committed_residual })
 }
 
 #[cfg(test)]

@@ -481,8 +481,10 @@ impl Driver<'_> {
         };
         let Some((flow, mass)) = flow else {
             let settings = self.nonlinear.settings().clone();
-            let settled = settle(self.model, &mut *self.linear, &settings, scales)
-                .map(|r| (r.clone(), format!("{} descent steps", r.iterations)));
+            let settled = settle(self.model, &mut *self.linear, &settings, scales).map(|r| {
+                let text = format!("{} descent steps", r.iterations);
+                (r, text)
+            });
             return (settled, false);
         };
         let observers = &mut *self.observers;
