@@ -45,7 +45,7 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
         String::new()
     };
     if summary.snaps > 0 {
-        arc.push_str(&format!("; {} snapped to a stable state", summary.snaps));
+        arc.push_str(&format!("; {} snapped to a stable state ({})", summary.snaps, summary.snap_method));
     }
     let mut lines = vec![format!(
         "{}: {} increments ({} cut{arc}), {} Newton iterations, {} factorizations, {} s; {} free dofs; output in {}",

@@ -12,6 +12,7 @@ use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 use stiction_core::CoreError;
 use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
+use stiction_core::model::Model;
 use stiction_core::nonlinear::damped_flow::FlowSettings;
 use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
 use stiction_core::path::{Continuation, ContinuationMethod, RunPlan, SnapMethod, StartPredictor, run_steps};
@@ -89,6 +90,19 @@ fn continuation(solver: &SolverSpec) -> Option<Continuation> {
     Some(Continuation { method, after_cuts: solver.arc_length_after_cuts })
 }
 
+/// The case's `solver.snap` as the driver's method; "auto" follows the damped flow where the
+/// state a snap lands on depends on its path (a material or an interface law with state).
+fn snap_method(solver: &SolverSpec, model: &Model) -> SnapMethod {
+    let flow =
+        SnapMethod::DampedFlow(FlowSettings { tolerance: solver.snap_tolerance, max_steps: solver.snap_max_steps });
+    match solver.snap {
+        SnapSpec::DampedFlow => flow,
+        SnapSpec::Settle => SnapMethod::Settle,
+        SnapSpec::Auto if model.path_dependent() => flow,
+        SnapSpec::Auto => SnapMethod::Settle,
+    }
+}
+
 pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions) -> Result<RunSummary> {
     if case.case.solver.threads > 0 {
         // Ignored if a global pool exists already (e.g. several runs in one process).
@@ -113,13 +127,7 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
             StartPredictorSpec::Tangent => StartPredictor::Tangent,
             StartPredictorSpec::None => StartPredictor::None,
         },
-        snap: match case.case.solver.snap {
-            SnapSpec::DampedFlow => SnapMethod::DampedFlow(FlowSettings {
-                tolerance: case.case.solver.snap_tolerance,
-                max_steps: case.case.solver.snap_max_steps,
-            }),
-            SnapSpec::Settle => SnapMethod::Settle,
-        },
+        snap: snap_method(&case.case.solver, &built.model),
     };
     let ordering = match case.case.solver.ordering {
         OrderingSpec::NestedDissection => Ordering::NestedDissection,

@@ -236,6 +236,11 @@ pub trait Contribution: Send {
     ) -> Result<()>;
     fn commit(&mut self) {}
     fn rollback(&mut self) {}
+    /// Whether this contribution's response depends on the path to its state (a law with
+    /// state: damage, hysteresis, a plastic footprint), so that how a jump is crossed matters.
+    fn path_dependent(&self) -> bool {
+        false
+    }
     /// The energy dissipated by damage from the committed state to the trial state of the
     /// last assembly, for laws that unload secantly to their origin (damage, penalty contact):
     /// per point the stored energy is -v g / 2 (v the law's value, positive pushing apart, g
@@ -637,6 +642,12 @@ impl Model {
             *g = full[dof];
         }
         Some((energy, rate))
+    }
+
+    /// Whether any material or contribution keeps state that depends on the path (plasticity,
+    /// damage, hysteresis): then the state a jump lands on depends on how it is crossed.
+    pub fn path_dependent(&self) -> bool {
+        self.sets.iter().any(|s| s.material.n_state() > 0) || self.contributions.iter().any(|c| c.path_dependent())
     }
 
     /// Total plastic (or other material) dissipation at the committed state:

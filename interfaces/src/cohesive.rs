@@ -152,6 +152,11 @@ impl Contribution for CohesiveElements {
         &self.name
     }
 
+    /// A law with state (damage, hysteresis, footprint sliders) remembers its path.
+    fn path_dependent(&self) -> bool {
+        self.law.n_state() > 0
+    }
+
     /// One block per point: the nodes of side A, then those of side B.
     fn coupled_nodes(&self) -> Vec<Vec<usize>> {
         self.points.iter().map(|p| p.a.iter().chain(&p.b).copied().collect()).collect()

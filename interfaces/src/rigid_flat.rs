@@ -371,6 +371,11 @@ impl Contribution for RigidFlat {
         &self.name
     }
 
+    /// A law with state (damage, hysteresis, footprint sliders) remembers its path.
+    fn path_dependent(&self) -> bool {
+        self.law.n_state() > 0
+    }
+
     fn assemble(
         &mut self,
         time: f64,

@@ -415,13 +415,14 @@ pub struct SolverSpec {
     #[serde(default = "default_arc_length_after_cuts")]
     pub arc_length_after_cuts: usize,
     /// How a snap (a jump at fixed load, where the path has no nearby equilibrium) finds the
-    /// state it reaches: "settle" (default: a descent from the committed state; the state of an
+    /// state it reaches: "settle" (a descent from the committed state; the state of an
     /// elastic body, but for a yielding body a one-step plastic update whose state depends on
-    /// how the descent went) or "damped-flow" (the body's overdamped motion against a uniform
+    /// how the descent went), "damped-flow" (the body's overdamped motion against a uniform
     /// viscous drag, M du/dtau = -r(u) with the unit-density mass, integrated to
     /// `snap_tolerance` with every step committed, so a yielding body or a hysteretic law
-    /// follows the snap's path: the same state whatever the solver or the discretization, at
-    /// tens to hundreds of times the cost).
+    /// follows the snap's path: the same state whatever the solver, at tens to hundreds of
+    /// times the cost) or "auto" (default: "damped-flow" when a material or an interface law
+    /// keeps state, i.e. the model is path dependent, "settle" otherwise).
     #[serde(default)]
     pub snap: SnapSpec,
     /// The damped flow's local error per step relative to the step's move (default 0.03).
@@ -438,6 +439,7 @@ pub struct SolverSpec {
 #[serde(rename_all = "kebab-case")]
 pub enum SnapSpec {
     #[default]
+    Auto,
     Settle,
     DampedFlow,
 }
@@ -555,7 +557,7 @@ pub fn defaults_help() -> String {
          growth_factor = {}, continuation = \"none\" (or \"arc-length\", \"dissipation\"), arc_length_after_cuts = {}, \
          method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"), \
          refactorization_cost_ratio = 0 (measured times), start_predictor = \"tangent\" (or \"none\"), \
-         snap = \"settle\" (or \"damped-flow\"), snap_tolerance = {}, snap_max_steps = {}; \
+         snap = \"auto\" (damped-flow for a path-dependent model, else settle; or \"settle\", \"damped-flow\"), snap_tolerance = {}, snap_max_steps = {}; \
          interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
          output.directory = out/<name>, output.vtk = true; ensemble.seed = 1, threads_per_member = 0 (auto), \
          concurrent_members = 0 (auto).",

@@ -46,3 +46,19 @@ fn bad_numbers_are_refused_when_the_case_is_loaded_naming_the_key() {
         assert_eq!(e.exit_code(), 2, "{set}");
     }
 }
+
+/// `solver.snap = "auto"` (the default) crosses a jump along the damped flow when the state it
+/// lands on depends on the path: when a material (plasticity) or an interface law (damage,
+/// hysteresis) keeps state. An elastic body with a reversible law is not path dependent.
+#[test]
+fn a_model_is_path_dependent_when_a_material_or_an_interface_law_keeps_state() {
+    let lj = "cases/validation/lj-sphere.toml";
+    let coarse = "mesh.parameters.h_contact=8.0";
+    let (_, elastic) = build_case(lj, &[coarse]);
+    assert!(!elastic.model.path_dependent(), "linear elastic body, Lennard-Jones law");
+    let (_, plastic) =
+        build_case(lj, &[coarse, "materials.ru.model=\"j2-plasticity\"", "materials.ru.yield_stress=3.42"]);
+    assert!(plastic.model.path_dependent(), "J2 plasticity keeps the plastic strain");
+    let (_, bonded) = build_case(CASE, &[]);
+    assert!(bonded.model.path_dependent(), "elastic blocks, but the cohesive law keeps its damage");
+}

@@ -85,6 +85,13 @@ fn dissipation_control_follows_the_snap_back_of_a_cohesive_bar_and_dissipates_ex
             softening_states(&q).len()
         );
         assert!(softening_states(&q).len() <= 1 && other_work > 2.0 * G_C);
+        // the damage law keeps state, so the default snap ("auto") follows the damped flow
+        assert!(
+            other.snaps >= 1 && other.snap_method == "damped-flow",
+            "{} snaps by {}",
+            other.snaps,
+            other.snap_method
+        );
     }
 }
 

@@ -202,6 +202,11 @@ fn initial_summary(model: &Model, plan: &RunPlan, factor_nnz: usize) -> RunSumma
         nnz: model.pattern().nnz(),
         factor_nnz,
         output_directory: plan.output_directory.clone(),
+        snap_method: match plan.snap {
+            SnapMethod::DampedFlow(_) => "damped-flow",
+            SnapMethod::Settle => "settle",
+        }
+        .into(),
         warnings: model.contributions.iter().flat_map(|c| c.warnings()).collect(),
         ..Default::default()
     }

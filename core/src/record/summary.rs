@@ -25,10 +25,11 @@ pub struct RunSummary {
     /// the file format's), and the limit points (turns of the load parameter) they passed.
     pub arc_length_increments: usize,
     pub limit_points: usize,
-    /// Increments where the path had no nearby equilibrium and the model was settled on a
-    /// stable one by a descent method (snaps: jump-in, pull-off under
-    /// displacement control).
+    /// Increments where the path had no nearby equilibrium and the model snapped to a stable
+    /// one (jump-in, pull-off under displacement control), by `snap_method`.
     pub snaps: usize,
+    /// How snaps are solved: "settle" (descent) or "damped-flow".
+    pub snap_method: String,
     pub newton_iterations: usize,
     /// Numeric factorizations of the tangent.
     pub factorizations: usize,
