@@ -5,8 +5,9 @@
 //! (3 z0 from the pole, where Newton cannot find an equilibrium at t = 0) and started far away
 //! (1.2 nm, jumping in on the way) must reach the same state at the same position of the flat,
 //! and the same most tensile force on the contact branch. The two ways to solve a snap, by
-//! descent (the default) and along the damped flow, must land on the same state of this elastic
-//! body (one stable state in reach: its path does not matter).
+//! descent (what "auto", the default, takes for this body) and along the damped flow, must
+//! land on the same state of this elastic body (one stable state in reach: its path does not
+//! matter).
 
 use stiction_tests::run_case;
 
