@@ -93,8 +93,11 @@ fn continuation(solver: &SolverSpec) -> Option<Continuation> {
 /// The case's `solver.snap` as the driver's method; "auto" follows the damped flow where the
 /// state a snap lands on depends on its path (a material or an interface law with state).
 fn snap_method(solver: &SolverSpec, model: &Model) -> SnapMethod {
-    let flow =
-        SnapMethod::DampedFlow(FlowSettings { tolerance: solver.snap_tolerance, max_steps: solver.snap_max_steps });
+    let flow = SnapMethod::DampedFlow(FlowSettings {
+        tolerance: solver.snap_tolerance,
+        max_steps: solver.snap_max_steps,
+        ..FlowSettings::default()
+    });
     match solver.snap {
         SnapSpec::DampedFlow => flow,
         SnapSpec::Settle => SnapMethod::Settle,

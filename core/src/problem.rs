@@ -60,4 +60,22 @@ pub trait NonlinearProblem {
     fn mass(&self) -> Option<Vec<f64>> {
         None
     }
+    /// What the problem needs of a solve when it is one step of a time integrator (a damped
+    /// flow's step): less accuracy than equilibrium (its own truncation error is much larger)
+    /// and an early end (a shorter step is cheaper than a long iteration). None (the default):
+    /// the solver's own test and iteration limit.
+    fn integrator_step(&self) -> Option<IntegratorStep> {
+        None
+    }
+}
+
+/// How a solver treats a problem that is one step of a time integrator
+/// ([`NonlinearProblem::integrator_step`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IntegratorStep {
+    /// An iterate reached by a full correction c (no line-search cut) that reduced ||r|| and
+    /// has ||c||_inf <= this counts as converged, whatever the solver's own test says.
+    pub correction_tolerance: f64,
+    /// Iterations after which the solve is given up (the integrator then shortens the step).
+    pub max_iterations: usize,
 }

@@ -14,3 +14,13 @@ pub fn norm(v: &[f64]) -> f64 {
 pub fn distance(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
 }
+
+/// ||v||_inf = max_i |v_i|.
+pub fn norm_inf(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+/// ||a - b||_inf = max_i |a_i - b_i|.
+pub fn distance_inf(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
+}

@@ -7,6 +7,10 @@
 //! time-averaged force norm over the converged increments (ABAQUS's time-averaged force):
 //! without it a body whose load has dropped to nearly zero (a cohesive interface near complete
 //! failure) would be held to a residual below the round-off of its element forces.
+//!
+//! A step of a time integrator (a damped flow's) needs less: it also counts as converged at a
+//! full correction within its own tolerance, and is given up at its own iteration limit
+//! ([`crate::problem::IntegratorStep`]).
 
 /// Nonlinear solver settings; `Default` is the single source of the defaults that case files
 /// and the command-line help quote.
@@ -84,24 +88,47 @@ pub(crate) struct IterationCheck {
     pub converged: bool,
 }
 
+/// The last correction of a fixed-time iteration: the step taken, and whether it was the full
+/// solver direction (no line-search cut).
+pub(crate) struct Correction<'a> {
+    pub step: &'a [f64],
+    pub full: bool,
+}
+
 /// Applies the test at a fixed-time iteration: ||r|| is recorded in `residual_norms`; at
 /// iteration 0 only a negligible residual counts (no correction has been made yet); the
-/// increment size is ||u - u_start|| and the correction `correction` (the last step taken).
+/// increment size is ||u - u_start||. A step of a time integrator
+/// ([`NonlinearProblem::integrator_step`](crate::problem::NonlinearProblem::integrator_step))
+/// also accepts a full correction within its tolerance that reduced ||r||.
 pub(crate) fn check_iteration(
     settings: &NewtonSettings,
     problem: &dyn crate::problem::NonlinearProblem,
     scales: ReferenceScales,
     iteration: usize,
-    correction: &[f64],
+    correction: Correction,
     start: &[f64],
     residual_norms: &mut Vec<f64>,
 ) -> IterationCheck {
     let residual = crate::vector::norm(problem.residual());
     let force_scale = settings.force_scale(problem.force_norm(), scales);
     residual_norms.push(residual);
-    let converged = (iteration > 0 || settings.residual_negligible(residual, force_scale)) && {
-        let step = crate::vector::distance(problem.solution(), start);
-        settings.converged(residual, force_scale, crate::vector::norm(correction), step, scales)
-    };
+    // a full correction that did not reduce ||r|| is no sign of being close
+    let accurate_enough = iteration > 0
+        && correction.full
+        && residual_norms.len() >= 2
+        && residual < residual_norms[residual_norms.len() - 2]
+        && problem
+            .integrator_step()
+            .is_some_and(|step| crate::vector::norm_inf(correction.step) <= step.correction_tolerance);
+    let converged = accurate_enough
+        || (iteration > 0 || settings.residual_negligible(residual, force_scale)) && {
+            let step = crate::vector::distance(problem.solution(), start);
+            settings.converged(residual, force_scale, crate::vector::norm(correction.step), step, scales)
+        };
     IterationCheck { residual, force_scale, converged }
+}
+
+/// The iteration limit for `problem`: the settings', or a time integrator step's own when lower.
+pub(crate) fn iteration_limit(settings: &NewtonSettings, problem: &dyn crate::problem::NonlinearProblem) -> usize {
+    problem.integrator_step().map_or(settings.max_iterations, |step| step.max_iterations.min(settings.max_iterations))
 }

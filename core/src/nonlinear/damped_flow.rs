@@ -16,9 +16,12 @@
 //! L-stable: the stiff modes of an elastic body are damped out, not rung); a step of length h solves
 //! M (u - s)/(beta h) + r(u) = 0 ([`Formula`]: s and beta from the last two states) with the
 //! run's nonlinear solver ([`DampedStep`]: tangent K + M/(beta h); the quasi-Newton solver
-//! reuses one factor over several steps) from an explicit predictor. The velocity
-//! (u - s)/(beta h) that a step ends with is the flow's, v = -M^{-1} r(u), exactly; at the start
-//! it comes from a factor of M. Accuracy: the local error (for backward Euler (h/2) ||v_{n+1} -
+//! reuses one factor over several steps) from an explicit predictor, only as accurately as the
+//! step needs: to a full correction below [`FlowSettings::solve_share`] (0.1) of the local error
+//! the step may make, and within [`MAX_ITERATIONS_PER_STEP`] iterations (a step that needs more
+//! was too long and is redone shorter; [`NonlinearProblem::integrator_step`]). The velocity
+//! (u - s)/(beta h) that a step ends with is the flow's, v = -M^{-1} r(u), up to that solve's
+//! error; at the start it comes from a factor of M. Accuracy: the local error (for backward Euler (h/2) ||v_{n+1} -
 //! v_n||_inf, for BDF2 Milne's estimate from the predictor) is kept below `tolerance` times
 //! the step's move ||u_{n+1} - u_n||_inf; a step with more than twice that is redone shorter,
 //! and the next h is h * 0.9 (tolerance move / error)^(1/(order + 1)), within [h/5, 2h] (BDF2
@@ -36,9 +39,9 @@ use super::convergence::ReferenceScales;
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
 use crate::error::Result;
 use crate::linear_solver::LinearSolver;
-use crate::problem::NonlinearProblem;
+use crate::problem::{IntegratorStep, NonlinearProblem};
 use crate::sparse::SparsityPattern;
-use crate::vector::norm;
+use crate::vector::{distance_inf, norm, norm_inf};
 use std::time::Instant;
 
 /// Failed steps in a row (each cut fourfold) after which the flow gives up.
@@ -52,11 +55,17 @@ pub struct FlowSettings {
     pub tolerance: f64,
     /// Accepted steps at most.
     pub max_steps: usize,
+    /// The share of a step's allowed local error its nonlinear solve may leave: the solve
+    /// stops at a correction below `solve_share` x `tolerance` x the step's move (the Newton
+    /// iteration of a stiff integrator stops once its error is a small fraction of the
+    /// truncation error; Hairer and Wanner, Solving ODEs II, IV.8). 0: every step is solved to
+    /// the solver's own equilibrium test.
+    pub solve_share: f64,
 }
 
 impl Default for FlowSettings {
     fn default() -> Self {
-        Self { tolerance: 0.03, max_steps: 5000 }
+        Self { tolerance: 0.03, max_steps: 5000, solve_share: 0.1 }
     }
 }
 
@@ -71,16 +80,54 @@ pub struct FlowReport {
     pub rejected: usize,
 }
 
-/// One backward-Euler step of the flow as a problem of its own: residual r(u) + M (u - u_n)/h,
-/// tangent K + M/h; the state life cycle is the wrapped problem's.
+/// One step of the flow as a problem of its own: residual r(u) + M (u - start)/(beta h),
+/// tangent K + M/(beta h); the state life cycle is the wrapped problem's. It is solved only as
+/// accurately as the step's own error needs: to a correction below the share
+/// ([`FlowSettings::solve_share`]) of the error the step may make, tolerance ||u - u_n||_inf.
 struct DampedStep<'a> {
     inner: &'a mut dyn NonlinearProblem,
     mass: &'a [f64],
     start: &'a [f64],
+    /// The state the step starts from.
+    u_n: &'a [f64],
     inverse_h: f64,
+    /// The flow's tolerance times the solve's share: the correction tolerance per unit of move.
+    accuracy: f64,
     residual: Vec<f64>,
     tangent: Vec<f64>,
+    moved: Vec<f64>,
     drag: Vec<f64>,
+    /// The correction tolerance at the last assembled iterate.
+    correction_tolerance: f64,
+}
+
+/// Iterations after which a flow step is given up and redone shorter (a step that needs
+/// more was too long: its nonlinearity is not the predictor's).
+pub const MAX_ITERATIONS_PER_STEP: usize = 10;
+
+impl<'a> DampedStep<'a> {
+    fn new(
+        inner: &'a mut dyn NonlinearProblem,
+        mass: &'a [f64],
+        formula: &'a Formula,
+        u_n: &'a [f64],
+        h: f64,
+        settings: &FlowSettings,
+    ) -> Self {
+        Self {
+            inner,
+            mass,
+            start: &formula.start,
+            u_n,
+            inverse_h: 1.0 / (formula.beta * h),
+            accuracy: settings.solve_share * settings.tolerance,
+            residual: Vec::new(),
+            tangent: Vec::new(),
+            moved: Vec::new(),
+            drag: Vec::new(),
+            correction_tolerance: 0.0,
+        }
+    }
 }
 
 impl NonlinearProblem for DampedStep<'_> {
@@ -98,16 +145,25 @@ impl NonlinearProblem for DampedStep<'_> {
     }
     fn assemble(&mut self, with_tangent: bool) -> Result<()> {
         self.inner.assemble(with_tangent)?;
-        let moved: Vec<f64> = self.inner.free_values().iter().zip(self.start).map(|(u, s)| u - s).collect();
-        self.drag.resize(moved.len(), 0.0);
-        self.inner.pattern().multiply(self.mass, &moved, &mut self.drag);
+        let u = self.inner.free_values();
+        self.moved.clear();
+        self.moved.extend(u.iter().zip(self.start).map(|(u, s)| u - s));
+        self.drag.resize(u.len(), 0.0);
+        self.inner.pattern().multiply(self.mass, &self.moved, &mut self.drag);
         self.residual.clear();
         self.residual.extend(self.inner.residual().iter().zip(&self.drag).map(|(r, d)| r + self.inverse_h * d));
         if with_tangent {
             self.tangent.clear();
             self.tangent.extend(self.inner.tangent().iter().zip(self.mass).map(|(k, m)| k + self.inverse_h * m));
         }
+        self.correction_tolerance = self.accuracy * distance_inf(&u, self.u_n);
         Ok(())
+    }
+    fn integrator_step(&self) -> Option<IntegratorStep> {
+        Some(IntegratorStep {
+            correction_tolerance: self.correction_tolerance,
+            max_iterations: MAX_ITERATIONS_PER_STEP,
+        })
     }
     fn residual(&self) -> &[f64] {
         &self.residual
@@ -141,16 +197,6 @@ impl NonlinearProblem for DampedStep<'_> {
     }
 }
 
-/// max_i |x_i|.
-fn largest(x: &[f64]) -> f64 {
-    x.iter().fold(0.0, |m, v| m.max(v.abs()))
-}
-
-/// max_i |a_i - b_i|.
-fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).fold(0.0, |m, (a, b)| m.max((a - b).abs()))
-}
-
 /// The flow's velocity at the problem's assembled state, v = -M^{-1} r, and the first step
 /// h_0 = 2 tolerance ||v|| / ||M^{-1} K v|| (one factorization of M).
 fn start_velocity(
@@ -171,7 +217,7 @@ fn start_velocity(
     problem.pattern().multiply(problem.tangent(), &v, &mut a);
     linear.solve_in_place(&mut a)?;
     report.solve_seconds += timer.elapsed().as_secs_f64();
-    let (speed, acceleration) = (largest(&v), largest(&a));
+    let (speed, acceleration) = (norm_inf(&v), norm_inf(&a));
     let h = if acceleration > 0.0 { 2.0 * tolerance * speed / acceleration } else { 1.0 };
     Ok((v, h))
 }
@@ -218,11 +264,7 @@ impl Formula {
     /// (h/2) ||v_new - v_n|| for backward Euler; for BDF2 Milne's estimate from the predictor,
     /// 2/9 / (2/9 + 5/12) ||u - predicted|| (the error constants of BDF2 and of the predictor).
     fn error(&self, u: &[f64], v_new: &[f64], v_n: &[f64], h: f64) -> f64 {
-        if self.order == 1 {
-            0.5 * h * largest_difference(v_new, v_n)
-        } else {
-            8.0 / 23.0 * largest_difference(u, &self.predicted)
-        }
+        if self.order == 1 { 0.5 * h * distance_inf(v_new, v_n) } else { 8.0 / 23.0 * distance_inf(u, &self.predicted) }
     }
 }
 
@@ -251,8 +293,8 @@ pub fn damped_flow(
     if newton.residual_negligible(norm(problem.residual()), force_scale(problem)) {
         return Ok(flow);
     }
-    // a committed step solves its equation exactly, so r(u_n) = -M v_n is its static residual:
-    // at rest when that passes the solver's residual test
+    // the wrapped problem's residual at a committed step is the static one, r(u_n) (= -M v_n
+    // up to the step's solve): at rest when that passes the solver's residual test
     let at_rest = |p: &dyn NonlinearProblem| newton.residual_converged(norm(p.residual()), force_scale(p));
     // moves below this are below what the solver's correction test resolves
     let resolution = newton.tol_displacement * 1e-3 * scales.displacement;
@@ -268,15 +310,7 @@ pub fn damped_flow(
     while flow.steps < settings.max_steps {
         let formula = Formula::new(&u_n, &v, previous.as_ref(), h);
         problem.set_free_values(&formula.predicted);
-        let mut step = DampedStep {
-            inner: &mut *problem,
-            mass,
-            start: &formula.start,
-            inverse_h: 1.0 / (formula.beta * h),
-            residual: Vec::new(),
-            tangent: Vec::new(),
-            drag: Vec::new(),
-        };
+        let mut step = DampedStep::new(&mut *problem, mass, &formula, &u_n, h, settings);
         if let Err(e) = solver.solve(&mut step, linear, t, scales).map(|report| flow.costs.add_costs(&report)) {
             problem.rollback();
             flow.rejected += 1;
@@ -289,7 +323,7 @@ pub fn damped_flow(
         }
         let u = problem.free_values();
         let v_new: Vec<f64> = u.iter().zip(&formula.start).map(|(a, b)| (a - b) / (formula.beta * h)).collect();
-        let moved = largest_difference(&u, &u_n);
+        let moved = distance_inf(&u, &u_n);
         let error = formula.error(&u, &v_new, &v, h);
         if error > 2.0 * tol * moved {
             problem.rollback();
@@ -306,20 +340,20 @@ pub fn damped_flow(
         previous = Some(PreviousStep { u: u_prev, v: v_prev, h });
         // BDF2 stays zero-stable for step ratios below 1 + sqrt 2
         h *= step_factor(tol, moved, error, formula.order, 2.0);
-        // the committed state's residual is the static one, r(u_n) = -M v_n
+        // the wrapped problem's residual at the committed state is the static one, r(u_n)
         committed_residual = norm(problem.residual());
         if at_rest(problem) {
             return Ok(flow);
         }
         let to_come = if decay < 1.0 { moved * decay / (1.0 - decay) } else { f64::INFINITY };
-        let so_far = largest_difference(&u_n, &origin);
+        let so_far = distance_inf(&u_n, &origin);
         let negligible = (tol * so_far).max(resolution);
         if to_come < negligible && to_come < tail_bar {
             // a failed or too long direct solve is a miss: the flow goes on
             if let Ok(report) = solver.solve(problem, linear, t, scales) {
                 flow.costs.add_costs(&report);
                 let end = problem.free_values();
-                let last = largest_difference(&end, &u_n);
+                let last = distance_inf(&end, &u_n);
                 if last <= 2.0 * negligible {
                     return Ok(flow);
                 }

@@ -1,7 +1,8 @@
 //! Full Newton-Raphson with the consistent tangent and a backtracking line search: one
-//! factorization per iteration. Convergence: [`NewtonSettings::converged`].
+//! factorization per iteration. Convergence: [`NewtonSettings::converged`] (and a time
+//! integrator step's own accuracy, [`crate::problem::IntegratorStep`]).
 
-use super::convergence::{NewtonSettings, ReferenceScales, check_iteration};
+use super::convergence::{Correction, NewtonSettings, ReferenceScales, check_iteration, iteration_limit};
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
 use crate::error::Result;
 use crate::linear_solver::LinearSolver;
@@ -48,14 +49,18 @@ pub fn solve_increment(
     problem.assemble(true)?;
     report.assembly_seconds += timer.elapsed().as_secs_f64();
     let mut du = vec![0.0; problem.n_free()];
-    for iteration in 0..=settings.max_iterations {
-        let check = check_iteration(&settings, problem, scales, iteration, &du, &start_u, &mut report.residual_norms);
+    let mut full = true;
+    let max_iterations = iteration_limit(settings, problem);
+    for iteration in 0..=max_iterations {
+        let correction = Correction { step: &du, full };
+        let check =
+            check_iteration(settings, problem, scales, iteration, correction, &start_u, &mut report.residual_norms);
         if check.converged {
             report.iterations = iteration;
             return Ok(report);
         }
         let r_norm = check.residual;
-        if iteration == settings.max_iterations {
+        if iteration == max_iterations {
             break;
         }
         let timer = Instant::now();
@@ -72,11 +77,12 @@ pub fn solve_increment(
         let alpha = line_search(problem, &du, r_norm, settings, true);
         report.assembly_seconds += timer.elapsed().as_secs_f64();
         let alpha = alpha?;
+        full = alpha == 1.0;
         for d in du.iter_mut() {
             *d *= alpha;
         }
     }
-    Err(IncrementFailure::Diverged { iterations: settings.max_iterations, residual: norm(problem.residual()) })
+    Err(IncrementFailure::Diverged { iterations: max_iterations, residual: norm(problem.residual()) })
 }
 
 /// Moves the problem along `du` from the state with residual norm `r_norm` and returns the

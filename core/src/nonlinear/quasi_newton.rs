@@ -21,10 +21,12 @@
 //! [`FIRST_NEWTON_STRETCH`] increments after the first such failure, twice as many after each
 //! further one (so the failed attempts cost a bounded share however often the path is hard),
 //! then quasi-Newton again (an adhesive jump-in is hard for a few increments, not for the rest
-//! of the run). Convergence is judged by the same test as Newton's
-//! ([`NewtonSettings::converged`]): the criteria are not loosened.
+//! of the run). A damped flow's step that fails (it was too long) is tried once by full Newton
+//! and starts no such stretch. Convergence is judged by the same test as Newton's
+//! ([`NewtonSettings::converged`], or a time integrator step's own accuracy,
+//! [`NonlinearProblem::integrator_step`]): the criteria are not loosened.
 
-use super::convergence::{NewtonSettings, ReferenceScales, check_iteration};
+use super::convergence::{Correction, NewtonSettings, ReferenceScales, check_iteration, iteration_limit};
 use super::newton::line_search;
 use super::refactorization_costs::{Costs, ITERATIONS_AFTER_REFACTORIZATION, rate_is_trusted};
 use super::tangent_predictor::{PredictorFactor, predict_along_tangent};
@@ -165,8 +167,11 @@ impl NonlinearSolver for QuasiNewtonSolver {
             Err(IncrementFailure::Diverged { iterations, .. }) => {
                 // not a crawl, not a cut: the same increment by full Newton from the committed
                 // state, and full Newton for the next increments (the path has become hard);
-                // the report counts both attempts
-                self.newton.quasi_newton_failed();
+                // the report counts both attempts. A time integrator's step that failed was
+                // too long, which says nothing of the next: it is tried once by Newton.
+                if problem.integrator_step().is_none() {
+                    self.newton.quasi_newton_failed();
+                }
                 problem.rollback();
                 let newton = super::newton::solve_increment(problem, linear, t, &self.settings, scales);
                 self.newton_solved(newton.is_ok());
@@ -264,23 +269,32 @@ impl QuasiNewtonSolver {
         let (mut du, mut r_old) = (vec![0.0; n], vec![0.0; n]);
         // the BFGS pairs the last step was computed with
         let mut pairs_in_last_step = 0;
-        for iteration in 0..=settings.max_iterations {
-            let check =
-                check_iteration(&settings, problem, scales, iteration, &du, &start_u, &mut report.residual_norms);
+        let mut full = true;
+        let max_iterations = iteration_limit(&settings, problem);
+        for iteration in 0..=max_iterations {
+            let correction = Correction { step: &du, full };
+            let check = check_iteration(
+                &settings,
+                problem,
+                scales,
+                iteration,
+                correction,
+                &start_u,
+                &mut report.residual_norms,
+            );
             if check.converged {
                 report.iterations = iteration;
                 self.increments_on_factor += 1;
                 return Ok(());
             }
             let (r_norm, force_scale) = (check.residual, check.force_scale);
-            if iteration == settings.max_iterations {
+            if iteration == max_iterations {
                 break;
             }
             if iteration > 0 {
                 let rate = r_norm / report.residual_norms[iteration - 1];
                 let target = settings.tol_residual * force_scale;
-                let budget =
-                    settings.max_iterations.saturating_sub(iteration + ITERATIONS_AFTER_REFACTORIZATION as usize);
+                let budget = max_iterations.saturating_sub(iteration + ITERATIONS_AFTER_REFACTORIZATION as usize);
                 if self.indefinite
                     || rate > self.slow_ratio
                     || (rate_is_trusted(pairs_in_last_step, self.increments_on_factor)
@@ -303,6 +317,7 @@ impl QuasiNewtonSolver {
             let alpha = line_search(problem, &du, r_norm, &settings, false);
             report.assembly_seconds += timer.elapsed().as_secs_f64();
             let alpha = alpha?;
+            full = alpha == 1.0;
             for d in du.iter_mut() {
                 *d *= alpha;
             }
@@ -310,7 +325,7 @@ impl QuasiNewtonSolver {
             pairs.push(du.clone(), y);
             self.costs.iterated(iteration_start.elapsed().as_secs_f64());
         }
-        Err(IncrementFailure::Diverged { iterations: settings.max_iterations, residual: norm(problem.residual()) })
+        Err(IncrementFailure::Diverged { iterations: max_iterations, residual: norm(problem.residual()) })
     }
 }
 

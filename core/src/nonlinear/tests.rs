@@ -7,12 +7,14 @@ use super::arc_length::{ArcLengthRequest, PreviousIncrement, solve_arc_length_in
 use super::{NewtonSettings, ReferenceScales, solve_increment};
 use crate::error::Result;
 use crate::linear_solver::{FaerCholesky, LinearSolver};
-use crate::problem::NonlinearProblem;
+use crate::problem::{IntegratorStep, NonlinearProblem};
 use crate::sparse::SparsityPattern;
 
 /// One free unknown u; `internal(u, t)` is (f_int - f_ext, d/du).
 struct OneDof {
     residual_of: fn(f64, f64) -> (f64, f64),
+    /// What it says it needs as a time integrator's step (None: an equilibrium problem).
+    integrator_step: Option<IntegratorStep>,
     u: f64,
     t: f64,
     committed: (f64, f64),
@@ -28,6 +30,7 @@ impl OneDof {
         let pattern = SparsityPattern::from_cells(1, 1, 1, cells.iter().map(|c| c.as_slice()), |a, _| Some(a));
         Self {
             residual_of,
+            integrator_step: None,
             u: 0.0,
             t: 0.0,
             committed: (0.0, 0.0),
@@ -94,6 +97,9 @@ impl NonlinearProblem for OneDof {
     }
     fn mass(&self) -> Option<Vec<f64>> {
         Some(vec![1.0])
+    }
+    fn integrator_step(&self) -> Option<IntegratorStep> {
+        self.integrator_step
     }
 }
 
@@ -232,6 +238,50 @@ fn settling_finds_the_stable_equilibrium_downhill_and_never_the_unstable_one() {
     p.set_free_values(&[-0.4]);
     settle(&mut p, &mut linear, &settings(), ReferenceScales::default()).unwrap();
     assert!((p.u - root(0.6, 1.5, 0.5)).abs() < 1e-10, "{}", p.u);
+}
+
+/// r = u^3 + u - 2: one root, u = 1.
+fn cubic_with_root_one(u: f64, _t: f64) -> (f64, f64) {
+    (u * u * u + u - 2.0, 3.0 * u * u + 1.0)
+}
+
+/// A time integrator's step is solved to its own correction tolerance (fewer iterations than
+/// equilibrium's 1e-12 test, and within the tolerance of the root) and given up at its own
+/// iteration limit, by Newton and by the quasi-Newton solver.
+#[test]
+fn an_integrator_step_is_solved_to_its_own_tolerance_and_given_up_at_its_own_limit() {
+    use super::newton::NewtonSolver;
+    use super::{IncrementFailure, NonlinearSolver, QuasiNewtonSolver};
+    let solve = |step: Option<IntegratorStep>, quasi: bool| {
+        let mut p = OneDof::new(cubic_with_root_one);
+        p.integrator_step = step;
+        p.set_free_values(&[3.0]);
+        p.commit();
+        let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+        let mut solver: Box<dyn NonlinearSolver> = if quasi {
+            Box::new(QuasiNewtonSolver::new(settings()))
+        } else {
+            Box::new(NewtonSolver { settings: settings() })
+        };
+        let report = solver.solve(&mut p, &mut linear, 0.0, ReferenceScales::default());
+        (report, p.u)
+    };
+    for quasi in [false, true] {
+        let (exact, u) = solve(None, quasi);
+        let exact = exact.unwrap();
+        assert!((u - 1.0).abs() < 1e-12, "{u}");
+        let loose = IntegratorStep { correction_tolerance: 1e-3, max_iterations: 25 };
+        let (inexact, u) = solve(Some(loose), quasi);
+        let inexact = inexact.unwrap();
+        assert!((u - 1.0).abs() < 1e-3, "quasi-Newton {quasi}: {u}");
+        assert!(inexact.iterations < exact.iterations, "{} vs {}", inexact.iterations, exact.iterations);
+        let short = IntegratorStep { correction_tolerance: 0.0, max_iterations: 2 };
+        match solve(Some(short), quasi).0 {
+            // the quasi-Newton solver tries the step once more by Newton, within the same limit
+            Err(IncrementFailure::Diverged { iterations, .. }) => assert_eq!(iterations, 2),
+            other => panic!("quasi-Newton {quasi}: {other:?}"),
+        }
+    }
 }
 
 /// r = sin u + 1/2: stable equilibria at -pi/6 + 2 pi n, unstable ones at 7 pi/6 + 2 pi n.
