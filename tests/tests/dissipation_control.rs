@@ -130,6 +130,24 @@ fn a_peak_passed_inside_one_large_increment_is_followed_not_stepped_over() {
     assert!((work / G_C - 1.0).abs() < 0.02, "net work {work} vs G_c {G_C}");
 }
 
+/// The time of attempts that were not committed (here the increment over the peak, converged
+/// and rolled back as a jump, and the cuts after it) is reported apart from the committed
+/// increments' assembly, factorization and solve times, and all of them fit in the wall time.
+#[test]
+fn attempts_not_committed_are_timed_apart_from_the_committed_increments() {
+    let sets = ["steps.0.initial_increment=0.3", "steps.0.max_increment=0.3"];
+    let (_, run) = run_case(CASE, &sets, "cohesive-bar-attempt-times");
+    assert_eq!(run.status, "completed", "{:?}", run.message);
+    let committed = run.assembly_seconds + run.factorization_seconds + run.solve_seconds;
+    println!(
+        "{} cut, attempts not committed {:.2e} s, committed increments {committed:.2e} s, wall {:.2e} s",
+        run.cut_increments, run.discarded_attempt_seconds, run.wall_seconds
+    );
+    assert!(run.cut_increments > 0, "the jump over the peak is rolled back");
+    assert!(run.discarded_attempt_seconds > 0.0);
+    assert!(committed + run.discarded_attempt_seconds <= run.wall_seconds);
+}
+
 /// Central-difference check of the model's damage dissipation: its gradient along a direction
 /// in the free dofs and its rate in pseudo-time (at fixed free dofs), at a trial state
 /// `trial` (all dofs) and time `t` after committing `committed` at `t_c`.

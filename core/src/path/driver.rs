@@ -332,14 +332,27 @@ impl Driver<'_> {
             let scales = self.scales();
             let solvers = Solvers { linear: &mut *self.linear, nonlinear: &mut *self.nonlinear };
             let via = if self.crossing.is_some() { Via::Crossing } else { Via::LoadControl };
+            let started = Instant::now();
             let attempt = match self.crossing.as_mut() {
                 Some(arc) => arc.attempt(self.model, solvers, &window, scales),
                 None => self.load.attempt(self.model, solvers, &window, scales),
             };
+            let attempt_seconds = started.elapsed().as_secs_f64();
             self.breakpoints = breakpoints;
+            let committed_before = self.summary.increments;
             let flow = match attempt {
-                Attempt::Converged(report) => self.converged(si, report, via)?,
-                Attempt::Failed(failure) => self.failed(si, &failure)?,
+                Attempt::Converged(report) => {
+                    let flow = self.converged(si, report, via)?;
+                    if self.summary.increments == committed_before {
+                        // rolled back as a jump
+                        self.summary.discarded_attempt_seconds += attempt_seconds;
+                    }
+                    flow
+                }
+                Attempt::Failed(failure) => {
+                    self.summary.discarded_attempt_seconds += attempt_seconds;
+                    self.failed(si, &failure)?
+                }
                 Attempt::OutsideWindow => {
                     self.crossing = None;
                     self.arc_blocked = true;

@@ -42,6 +42,10 @@ pub struct RunSummary {
     pub assembly_seconds: f64,
     pub factorization_seconds: f64,
     pub solve_seconds: f64,
+    /// Wall seconds of the attempts that were not committed: those that failed and were cut,
+    /// and converged ones rolled back as jumps (the assembly, factorization and solve seconds
+    /// above are those of the committed increments only).
+    pub discarded_attempt_seconds: f64,
     pub plastic_dissipation: f64,
     /// The largest equivalent plastic strain of any integration point at the end (None without
     /// a plastic material).
