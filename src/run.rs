@@ -16,7 +16,9 @@ use stiction_core::model::Model;
 use stiction_core::nonlinear::damped_flow::FlowSettings;
 use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
 use stiction_core::path::{Continuation, ContinuationMethod, RunPlan, SnapMethod, StartPredictor, run_steps};
-use stiction_core::record::{CyclesWriter, EventsRecorder, HistoryRecorder, Observer, SummaryWriter, VtkRecorder};
+use stiction_core::record::{
+    CyclesWriter, EventsRecorder, HistoryRecorder, MessageLog, Observer, SummaryWriter, VtkRecorder,
+};
 
 pub use stiction_core::record::{InterfaceSummary, RunSummary};
 
@@ -66,6 +68,7 @@ fn observers(
             built.load_groups.clone(),
         )?),
         Box::new(EventsRecorder::create(&out.join("events.csv"))?),
+        Box::new(MessageLog::create(&out.join("messages.log"))?),
     ];
     if case.case.output.vtk {
         list.push(Box::new(VtkRecorder::new(out, &case.name, model)));

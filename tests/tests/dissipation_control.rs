@@ -146,6 +146,17 @@ fn attempts_not_committed_are_timed_apart_from_the_committed_increments() {
     assert!(run.cut_increments > 0, "the jump over the peak is rolled back");
     assert!(run.discarded_attempt_seconds > 0.0);
     assert!(committed + run.discarded_attempt_seconds <= run.wall_seconds);
+    // messages.log: the start, every committed increment in order, the rollback, the end
+    let log = std::fs::read_to_string(run.output_directory.join("messages.log")).unwrap();
+    let texts: Vec<&str> = log.lines().map(|l| l.split_once("] ").map_or("", |(_, text)| text)).collect();
+    assert!(texts[0].starts_with("run 'cohesive-bar-snap-back'"), "{log}");
+    let increments: Vec<&str> = texts.iter().copied().filter(|t| t.starts_with("increment ")).collect();
+    assert_eq!(increments.len(), run.increments + 1, "the initial state and each increment: {log}");
+    for (k, line) in increments.iter().enumerate() {
+        assert!(line.starts_with(&format!("increment {k}:")), "{line}");
+    }
+    assert!(texts.iter().any(|t| t.contains("jumped") && t.contains("rolled back")), "{log}");
+    assert!(texts.last().unwrap().starts_with("completed at t = "), "{log}");
 }
 
 /// Central-difference check of the model's damage dissipation: its gradient along a direction

@@ -15,9 +15,10 @@
 //! displacement-controlled system snaps to ([`SnapMethod`]: by descent,
 //! [`crate::nonlinear::settle`], or along the body's overdamped motion,
 //! [`crate::nonlinear::damped_flow`], whose steps are committed so that plastic flow follows
-//! the snap's path). The state is committed as a jump and load control goes on from it. At most
-//! [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row without a load step in between; then the run
-//! stops with the reason.
+//! the snap's path). The state is committed as a jump and load control goes on from it. A crawl
+//! (load control creeping towards folds it cannot pass, [`CRAWL_COMMITS`]) is passed by snaps one
+//! initial increment ahead. At most [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row without a load
+//! step in between; then the run stops with the reason.
 
 use super::arc_length_control::ArcLengthControl;
 use super::dissipation_control::DissipationControl;
@@ -48,13 +49,18 @@ pub const JUMP_RATIO: f64 = 5.0;
 /// A damped-flow snap tells the observers how far it is every this many steps.
 const FLOW_PROGRESS_EVERY: usize = 20;
 
-/// Snaps in a row (no ordinary increment converging in between) after which the run stops.
+/// Snaps in a row (no ordinary increment converging in between, none moving the load on by more
+/// than the minimum increment) after which the run stops.
 pub const MAX_SNAPS_WITHOUT_PROGRESS: usize = 3;
 
 /// A crawl: this many committed load-controlled increments in a row, each below
 /// [`CRAWL_FRACTION`] of the step's maximum increment (sizes only cuts produce). The path creeps
 /// towards a fold it cannot pass by cutting (each increment shrinks geometrically); the driver
-/// then settles one initial increment ahead instead.
+/// then settles one initial increment ahead instead. Until a load-controlled increment
+/// converges again (or the load reaches a breakpoint), the path is taken to be still crawling: a
+/// failed attempt settles one initial increment ahead at once instead of being cut (a 3D contact
+/// front that crosses the mesh node by node folds again at every node; cutting down to each of
+/// those folds costs more than the settling that passes them).
 pub const CRAWL_COMMITS: usize = 6;
 pub const CRAWL_FRACTION: f64 = 1e-2;
 
@@ -162,6 +168,7 @@ pub fn run_steps(
         cuts_since_commit: 0,
         snaps_in_a_row: 0,
         small_commits_in_a_row: 0,
+        crawling: false,
         law_failures: BTreeMap::new(),
         force_sum: (0.0, 0),
         since_output: 0,
@@ -250,6 +257,9 @@ struct Driver<'a> {
     /// Committed load-controlled increments in a row below the crawl size (see
     /// [`CRAWL_COMMITS`]).
     small_commits_in_a_row: usize,
+    /// Set by a crawl snap; cleared when a load-controlled (or crossing) increment converges,
+    /// when the load reaches a breakpoint and at a step's start (see [`CRAWL_COMMITS`]).
+    crawling: bool,
     /// Interface-law failures that cut increments, each distinct one once: (law, interface,
     /// message) -> (times, first point).
     law_failures: BTreeMap<(String, String, String), (usize, usize)>,
@@ -306,6 +316,7 @@ impl Driver<'_> {
         let step = &self.plan.steps[si];
         self.load.start_step(&step.incrementation);
         self.since_output = 0;
+        self.crawling = false;
         while self.t < step.end_time - 1e-12 * self.t_end {
             if self.plan.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::Relaxed)) {
                 return Ok(Some(Ending::Interrupted));
@@ -318,12 +329,11 @@ impl Driver<'_> {
                 t_end: self.t_end,
                 breakpoints: &breakpoints,
             };
-            let inc = &step.incrementation;
             if self.crossing.is_none() && self.small_commits_in_a_row >= CRAWL_COMMITS {
                 self.breakpoints = breakpoints;
                 self.small_commits_in_a_row = 0;
                 let reason = format!("crawling at t = {:.6} (dt = {:.2e})", self.t, self.load.dt);
-                match self.snap_over(si, &reason, inc.initial)? {
+                match self.crawl_snap(si, &reason)? {
                     Flow::Continue => continue,
                     Flow::StepDone => break,
                     Flow::Stop(message) => return Ok(Some(Ending::Failed(message))),
@@ -398,8 +408,20 @@ impl Driver<'_> {
                 return Ok(Flow::Continue);
             }
         }
+        if self.crawling && self.crossing.is_none() {
+            let reason = format!("still crawling at t = {:.6} ({failure})", self.t);
+            return self.crawl_snap(si, &reason);
+        }
         let cut = self.load.cut(failure);
         self.after_cut(si, cut, failure)
+    }
+
+    /// Settles one initial increment ahead of a crawl (see [`CRAWL_COMMITS`]); the path counts
+    /// as still crawling after it unless it reached a breakpoint.
+    fn crawl_snap(&mut self, si: usize, reason: &str) -> Result<Flow> {
+        let flow = self.snap_over(si, reason, self.plan.steps[si].incrementation.initial)?;
+        self.crawling = matches!(flow, Flow::Continue) && !self.at_breakpoint(self.t);
+        Ok(flow)
     }
 
     fn after_cut(
@@ -441,6 +463,8 @@ impl Driver<'_> {
         self.crossing = None;
         self.model.rollback();
         self.load.set_increment(dt);
+        let text = format!("{}: {reason}; snapping from t = {:.6}", step.name, self.t);
+        self.observers.iter_mut().for_each(|o| o.message(&text));
         let window = StepWindow {
             t: self.t,
             step_start: self.t,
@@ -460,7 +484,8 @@ impl Driver<'_> {
         }
         match settled {
             Ok((report, _)) => {
-                self.snaps_in_a_row += 1;
+                // a snap past the minimum increment moved the load on: progress
+                self.snaps_in_a_row = if dt > step.incrementation.minimum { 0 } else { self.snaps_in_a_row + 1 };
                 self.summary.snaps += 1;
                 self.converged(si, report, Via::Settling)
             }
@@ -544,6 +569,9 @@ impl Driver<'_> {
         self.summary.cut_increments += 1;
         self.cuts_since_commit += 1;
         self.crossing = continuation.start(previous, target);
+        let why = if too_far { "moved too far" } else { "turned back" };
+        let text = format!("the increment to t = {target:.6} jumped ({why}): rolled back, crossing the limit point");
+        self.observers.iter_mut().for_each(|o| o.message(&text));
         true
     }
 
@@ -578,6 +606,7 @@ impl Driver<'_> {
             self.load.set_increment(step.incrementation.initial);
         } else {
             self.snaps_in_a_row = 0;
+            self.crawling = false;
             let small = target - self.t < CRAWL_FRACTION * step.incrementation.maximum;
             self.small_commits_in_a_row =
                 if via == Via::LoadControl && small { self.small_commits_in_a_row + 1 } else { 0 };

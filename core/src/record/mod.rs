@@ -1,13 +1,14 @@
 //! Recording as observers of committed increments. The step driver
 //! ([`crate::path::driver`]) notifies every [`Observer`] of the initial state, of each
-//! committed increment, of interface events, of progress messages and of the end of the run; each
-//! output (history.csv, events.csv, the VTK series, summary.json, a progress bar, plots) is one
-//! small observer. A new output is a new observer, not an edit of the loop.
+//! committed increment, of interface events, of progress messages and of the end of the run;
+//! each output (history.csv, events.csv, messages.log, the VTK series, summary.json, a progress
+//! bar, plots) is one small observer. A new output is a new observer, not an edit of the loop.
 
 pub mod cycles;
 mod events;
 mod history;
 pub mod interface_tracker;
+mod message_log;
 pub mod plastic_drawing;
 pub mod summary;
 mod vtk_series;
@@ -16,6 +17,7 @@ pub use cycles::{CycleSummary, CyclesWriter, ResistanceAtForce};
 pub use events::EventsRecorder;
 pub use history::HistoryRecorder;
 pub use interface_tracker::{InterfaceEvent, InterfaceTracker};
+pub use message_log::MessageLog;
 pub use summary::{InterfaceSummary, RunSummary, SummaryWriter};
 pub use vtk_series::VtkRecorder;
 
