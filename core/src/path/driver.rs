@@ -570,7 +570,8 @@ impl Driver<'_> {
         self.cuts_since_commit += 1;
         self.crossing = continuation.start(previous, target);
         let why = if too_far { "moved too far" } else { "turned back" };
-        let text = format!("the increment to t = {target:.6} jumped ({why}): rolled back, crossing the limit point");
+        let next = if self.crossing.is_some() { "crossing the limit point" } else { "load control goes on" };
+        let text = format!("the increment to t = {target:.6} jumped ({why}): rolled back, {next}");
         self.observers.iter_mut().for_each(|o| o.message(&text));
         true
     }
