@@ -7,6 +7,14 @@
 //! Consistent tangent:
 //! C_ep = C - 2 mu / (1 + (H + H_k)/(3 mu)) n x n - 2 mu (2 mu dgamma / ||xi_trial||) (I_dev - n x n).
 //!
+//! An optional tangent-only hardening H_t (`with_tangent_hardening`) replaces H + H_k by
+//! H + H_k + H_t in the n x n term of the tangent alone: stresses and states stay those of H and
+//! H_k, so the converged solution does not change, but the tangent of a perfectly plastic
+//! point keeps the stiffness 2 mu (H_t/3mu)/(1 + H_t/3mu) along n instead of losing rank there.
+//! Newton then converges linearly, not quadratically, at flowing points; it is meant for
+//! perfectly plastic necks at their limit load, where the exact tangent is singular and Newton
+//! cycles.
+//!
 //! State per point (15 numbers): plastic strain (6, engineering shears), back stress (6),
 //! equivalent plastic strain, plastic dissipation density (integral sigma : d eps_p), and a flag
 //! that is 1 when the last update yielded.
@@ -30,6 +38,7 @@ pub struct J2Plasticity {
     yield_stress: f64,
     isotropic_hardening: f64,
     kinematic_hardening: f64,
+    tangent_hardening: f64,
     c: Tangent,
 }
 
@@ -80,8 +89,25 @@ impl J2Plasticity {
             yield_stress,
             isotropic_hardening,
             kinematic_hardening,
+            tangent_hardening: 0.0,
             c: isotropic_elasticity(youngs_modulus, poissons_ratio),
         })
+    }
+
+    /// The same law with a tangent-only hardening modulus H_t >= 0 (see the module doc): the
+    /// tangent's n x n coefficient becomes 2 mu / (1 + (H + H_k + H_t)/(3 mu)), the stresses do
+    /// not change.
+    pub fn with_tangent_hardening(mut self, tangent_hardening: f64) -> Result<Self, MaterialsError> {
+        if !(tangent_hardening >= 0.0 && tangent_hardening.is_finite()) {
+            return Err(MaterialsError::Parameter {
+                material: self.name,
+                key: "tangent_hardening",
+                value: tangent_hardening,
+                expected: "a finite modulus >= 0",
+            });
+        }
+        self.tangent_hardening = tangent_hardening;
+        Ok(self)
     }
 }
 
@@ -149,7 +175,7 @@ impl Material for J2Plasticity {
         new[DISS] = old[DISS] + dissipation;
         new[ACTIVE] = 1.0;
         let beta = 2.0 * mu * dgamma / xi_norm;
-        let gamma_bar = 1.0 / (1.0 + h_sum / (3.0 * mu)) - beta;
+        let gamma_bar = 1.0 / (1.0 + (h_sum + self.tangent_hardening) / (3.0 * mu)) - beta;
         for i in 0..6 {
             for j in 0..6 {
                 let idev = if i < 3 && j < 3 {
@@ -245,5 +271,37 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Tangent-only hardening leaves stresses and states bit for bit those of the perfectly
+    /// plastic law; its tangent differs by the rank-one term 2 mu (1 - 1/(1 + H_t/(3 mu))) n x n,
+    /// so along the flow direction (engineering strain d = n) the perfectly plastic tangent gives
+    /// C d = 0 (the lost rank) and the stiffened one C d = 2 mu (H_t/3mu)/(1 + H_t/3mu) n.
+    #[test]
+    fn tangent_hardening_stiffens_the_flow_direction_only() {
+        let (e_mod, nu, h_t) = (410.0, 0.3, 41.0);
+        let mu = e_mod / (2.0 * (1.0 + nu));
+        let perfect = J2Plasticity::new("ru", e_mod, nu, 3.42, 0.0, 0.0).unwrap();
+        let stiffened = perfect.clone().with_tangent_hardening(h_t).unwrap();
+        let path = [[0.012, -0.004, -0.003, 0.006, 0.002, -0.001], [0.015, -0.002, -0.006, 0.009, -0.003, 0.004]];
+        let (a, b) = (run(&perfect, &path), run(&stiffened, &path));
+        for ((sa, ca, state_a), (sb, cb, state_b)) in a.iter().zip(&b) {
+            assert_eq!(sa, sb);
+            assert_eq!(state_a, state_b);
+            assert_eq!(state_a[ACTIVE], 1.0, "the path must be plastic");
+            let p = (sa[0] + sa[1] + sa[2]) / 3.0;
+            let dev: [f64; 6] = std::array::from_fn(|i| sa[i] - if i < 3 { p } else { 0.0 });
+            let n: [f64; 6] = std::array::from_fn(|i| dev[i] / norm(&dev));
+            let d: [f64; 6] = std::array::from_fn(|i| n[i] * if i < 3 { 1.0 } else { 2.0 });
+            let k = h_t / (3.0 * mu);
+            for i in 0..6 {
+                let ca_d: f64 = (0..6).map(|j| ca[i][j] * d[j]).sum();
+                let cb_d: f64 = (0..6).map(|j| cb[i][j] * d[j]).sum();
+                assert!(ca_d.abs() < 1e-9 * e_mod, "perfectly plastic C d [{i}] = {ca_d}");
+                let expected = 2.0 * mu * k / (1.0 + k) * n[i];
+                assert!((cb_d - expected).abs() < 1e-9 * e_mod, "C_t d [{i}] = {cb_d}, expected {expected}");
+            }
+        }
+        assert!(perfect.with_tangent_hardening(-1.0).is_err());
     }
 }

@@ -13,20 +13,29 @@ use stiction_elements::{QuadratureChoice, SolidKernel};
 use stiction_materials::{J2Plasticity, LinearElastic};
 
 fn material(case: &LoadedCase, name: &str, spec: &MaterialSpec) -> Result<Arc<dyn Material>> {
+    if spec.tangent_hardening != 0.0 && spec.model != "j2-plasticity" {
+        return Err(case.error(
+            format!("materials.{name}.tangent_hardening"),
+            format!("applies to model 'j2-plasticity' only, not '{}'", spec.model),
+        ));
+    }
     Ok(match spec.model.as_str() {
         "linear-elastic" => Arc::new(LinearElastic::new(name, spec.youngs_modulus, spec.poissons_ratio)?),
         "j2-plasticity" => {
             let y = spec.yield_stress.ok_or_else(|| {
                 case.error(format!("materials.{name}.yield_stress"), "required for model 'j2-plasticity'")
             })?;
-            Arc::new(J2Plasticity::new(
-                name,
-                spec.youngs_modulus,
-                spec.poissons_ratio,
-                y,
-                spec.isotropic_hardening,
-                spec.kinematic_hardening,
-            )?)
+            Arc::new(
+                J2Plasticity::new(
+                    name,
+                    spec.youngs_modulus,
+                    spec.poissons_ratio,
+                    y,
+                    spec.isotropic_hardening,
+                    spec.kinematic_hardening,
+                )?
+                .with_tangent_hardening(spec.tangent_hardening)?,
+            )
         }
         other => {
             return Err(case.error(

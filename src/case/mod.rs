@@ -136,6 +136,11 @@ pub struct MaterialSpec {
     /// J2: linear kinematic hardening modulus (default 0).
     #[serde(default)]
     pub kinematic_hardening: f64,
+    /// J2: tangent-only hardening modulus (default 0): stiffens the tangent of flowing points
+    /// along the flow direction without changing the stresses, for perfectly plastic necks at
+    /// their limit load (Newton then converges linearly there).
+    #[serde(default)]
+    pub tangent_hardening: f64,
 }
 
 #[derive(Debug, Clone, Deserialize)]

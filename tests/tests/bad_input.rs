@@ -99,6 +99,18 @@ fn non_positive_modulus_names_the_parameter() {
 }
 
 #[test]
+fn tangent_hardening_is_refused_for_an_elastic_material_and_below_zero() {
+    let p = scratch("tangent-hardening.toml", &base_case(&cantilever_geo()));
+    let (msg, code) = failure(&p, &["materials.steel.tangent_hardening=2.0"]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("materials.steel.tangent_hardening") && msg.contains("j2-plasticity"), "{msg}");
+    let plastic = ["materials.steel.model=\"j2-plasticity\"", "materials.steel.yield_stress=1.0"];
+    let (msg, code) = failure(&p, &[plastic[0], plastic[1], "materials.steel.tangent_hardening=-2.0"]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("tangent_hardening") && msg.contains(">= 0") && msg.contains("-2"), "{msg}");
+}
+
+#[test]
 fn missing_mesh_file_names_the_file() {
     let p = scratch("missing-mesh.toml", &base_case("file = \"does-not-exist.msh\""));
     let (msg, code) = failure(&p, &[]);

@@ -90,3 +90,42 @@ fn elastic_plastic_sphere_matches_jackson_green_and_kogut_etsion() {
     println!("contact lost at approach {release:.3} nm; plastic dissipation {:.1} nN nm", last[id]);
     assert!(release > 0.1 * wc, "no residual flattening: contact lost at {release}");
 }
+
+/// `tangent_hardening` stiffens only the tangent of flowing points: the same loading and
+/// unloading gives the same forces and plastic dissipation at every increment (to the Newton
+/// tolerance, 1e-8 of the force scale), with the increments the perfectly plastic tangent takes.
+#[test]
+fn tangent_hardening_changes_neither_forces_nor_dissipation() {
+    let sets = ["mesh.parameters.h_contact=6.0", "steps.0.max_increment=0.1", "steps.0.initial_increment=0.1"];
+    let history = |extra: &[&'static str], name: &str| {
+        let all: Vec<&str> = sets.iter().chain(extra).copied().collect();
+        let (_, summary) = run_case("cases/validation/jackson-green.toml", &all, name);
+        assert_eq!(summary.status, "completed", "{name}");
+        let text = std::fs::read_to_string(summary.output_directory.join("history.csv")).unwrap();
+        let header: Vec<String> = text.lines().next().unwrap().split(',').map(String::from).collect();
+        let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+        let (it, i_f, id) = (col("time"), col("force"), col("plastic_dissipation"));
+        let rows: Vec<[f64; 3]> = text
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+                [v[it], v[i_f], v[id]]
+            })
+            .collect();
+        (rows, summary.newton_iterations)
+    };
+    let (perfect, its_perfect) = history(&[], "jackson-green-perfect");
+    let (stiffened, its_stiffened) =
+        history(&["materials.ru.tangent_hardening=41.0"], "jackson-green-tangent-hardening");
+    println!("Newton iterations: {its_perfect} with the exact tangent, {its_stiffened} with H_t = 41 GPa");
+    assert_eq!(perfect.len(), stiffened.len(), "different increments");
+    let max_force = perfect.iter().map(|r| r[1].abs()).fold(0.0, f64::max);
+    let max_dissipation = perfect.iter().map(|r| r[2]).fold(0.0, f64::max);
+    assert!(max_dissipation > 0.0, "the run must yield");
+    for (a, b) in perfect.iter().zip(&stiffened) {
+        assert_eq!(a[0], b[0], "increment times differ");
+        assert!((a[1] - b[1]).abs() <= 1e-6 * max_force, "t = {}: force {} vs {}", a[0], a[1], b[1]);
+        assert!((a[2] - b[2]).abs() <= 1e-6 * max_dissipation, "t = {}: dissipation {} vs {}", a[0], a[2], b[2]);
+    }
+}

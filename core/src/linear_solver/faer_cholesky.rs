@@ -28,6 +28,9 @@ pub enum Precision {
     Double,
     /// f32 factor (half the memory and about half the time); exact solves by iterative
     /// refinement in double precision, x += L^-T L^-1 (b - A x), until ||b - A x|| <= 1e-12 ||b||.
+    /// Refinement contracts only while cond(A) eps_f32 < 1: when it stalls or diverges (a nearly
+    /// singular or indefinite tangent), the matrix is refactored in f64 and that factor solves
+    /// until the next factorization.
     Single,
 }
 
@@ -109,6 +112,11 @@ enum Factor {
         matrix: Vec<f64>,
         matrix_f32: Vec<f32>,
         pattern: SparsityPattern,
+        /// The f64 factor of the same matrix, made when refinement fails (storage kept once
+        /// allocated; `kind` is None until this matrix has been factored in f64).
+        fallback: Numeric<f64>,
+        /// Matrices refactored in f64 because refinement failed.
+        fallbacks: usize,
     },
 }
 
@@ -158,6 +166,8 @@ impl FaerCholesky {
                 matrix: Vec::new(),
                 matrix_f32: Vec::new(),
                 pattern: pattern.clone(),
+                fallback: Numeric { values: Vec::new(), kind: None },
+                fallbacks: 0,
             },
         };
         Ok(Self { symbolic, factor, workspace, par })
@@ -192,6 +202,49 @@ impl FaerCholesky {
     }
 }
 
+/// Iterative refinement with the f32 factor of A: x_0 = 0, x_{k+1} = x_k + F^-1 (b - A x_k),
+/// stopped at ||b - A x|| <= REFINEMENT_TOLERANCE ||b||. On success `rhs` holds x and the result
+/// is true; it is false (and `rhs` untouched) when the residual grows or is still above the
+/// tolerance after MAX_REFINEMENTS corrections.
+fn refine(
+    numeric: &Numeric<f32>,
+    (symbolic, matrix, pattern): (&SymbolicCholesky<usize>, &[f64], &SparsityPattern),
+    rhs: &mut [f64],
+    par: Par,
+    workspace: &mut MemBuffer,
+) -> Result<bool> {
+    let b = rhs.to_vec();
+    let tolerance = REFINEMENT_TOLERANCE * crate::vector::norm(&b);
+    let mut x = vec![0.0; b.len()];
+    let mut r = b.clone();
+    let mut r_norm = f64::INFINITY;
+    let mut r32 = vec![0.0f32; b.len()];
+    let mut ax = vec![0.0; b.len()];
+    for _ in 0..=MAX_REFINEMENTS {
+        for (s, d) in r32.iter_mut().zip(&r) {
+            *s = *d as f32;
+        }
+        numeric.solve(symbolic, (&mut r32, 1), par, workspace)?;
+        for (xi, c) in x.iter_mut().zip(&r32) {
+            *xi += *c as f64;
+        }
+        pattern.multiply(matrix, &x, &mut ax);
+        for ((ri, bi), ai) in r.iter_mut().zip(&b).zip(&ax) {
+            *ri = bi - ai;
+        }
+        let previous = r_norm;
+        r_norm = crate::vector::norm(&r);
+        if r_norm <= tolerance {
+            rhs.copy_from_slice(&x);
+            return Ok(true);
+        }
+        if r_norm.is_nan() || r_norm >= previous {
+            return Ok(false);
+        }
+    }
+    Ok(false)
+}
+
 impl LinearSolver for FaerCholesky {
     fn analyse(pattern: &SparsityPattern) -> Result<Self> {
         Self::analyse_with(pattern, Ordering::default())
@@ -199,6 +252,13 @@ impl LinearSolver for FaerCholesky {
 
     fn factor_nnz(&self) -> usize {
         self.symbolic.len_val()
+    }
+
+    fn precision_fallbacks(&self) -> usize {
+        match &self.factor {
+            Factor::Double(_) => 0,
+            Factor::Single { fallbacks, .. } => *fallbacks,
+        }
     }
 
     fn factorize(&mut self, pattern: &SparsityPattern, values: &[f64]) -> Result<FactorKind> {
@@ -210,7 +270,8 @@ impl LinearSolver for FaerCholesky {
             Factor::Double(numeric) => {
                 numeric.factorize(&self.symbolic, SparseColMatRef::new(sym, values), self.par, &mut self.workspace)
             }
-            Factor::Single { numeric, matrix, matrix_f32, .. } => {
+            Factor::Single { numeric, matrix, matrix_f32, fallback, .. } => {
+                fallback.kind = None;
                 matrix.clear();
                 matrix.extend_from_slice(values);
                 matrix_f32.clear();
@@ -222,32 +283,27 @@ impl LinearSolver for FaerCholesky {
     }
 
     fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
-        match &self.factor {
+        match &mut self.factor {
             Factor::Double(numeric) => numeric.solve(&self.symbolic, (rhs, 1), self.par, &mut self.workspace)?,
-            Factor::Single { numeric, matrix, pattern, .. } => {
-                let b = rhs.to_vec();
-                let b_norm = crate::vector::norm(&b);
-                let mut x = vec![0.0; b.len()];
-                let mut r = b.clone();
-                let mut r32 = vec![0.0f32; b.len()];
-                let mut ax = vec![0.0; b.len()];
-                for _ in 0..=MAX_REFINEMENTS {
-                    for (s, d) in r32.iter_mut().zip(&r) {
-                        *s = *d as f32;
+            Factor::Single { numeric, matrix, pattern, fallback, fallbacks, .. } => {
+                let refined = fallback.kind.is_none()
+                    && refine(numeric, (&self.symbolic, matrix, pattern), rhs, self.par, &mut self.workspace)?;
+                if !refined {
+                    if fallback.kind.is_none() {
+                        *fallbacks += 1;
+                        fallback.values.resize(self.symbolic.len_val(), 0.0);
+                        let sym = SymbolicSparseColMatRef::new_checked(
+                            pattern.n,
+                            pattern.n,
+                            &pattern.col_ptr,
+                            None,
+                            &pattern.row_idx,
+                        );
+                        let a = SparseColMatRef::new(sym, &matrix[..]);
+                        fallback.factorize(&self.symbolic, a, self.par, &mut self.workspace)?;
                     }
-                    numeric.solve(&self.symbolic, (&mut r32, 1), self.par, &mut self.workspace)?;
-                    for (xi, c) in x.iter_mut().zip(&r32) {
-                        *xi += *c as f64;
-                    }
-                    pattern.multiply(matrix, &x, &mut ax);
-                    for ((ri, bi), ai) in r.iter_mut().zip(&b).zip(&ax) {
-                        *ri = bi - ai;
-                    }
-                    if !(crate::vector::norm(&r) > REFINEMENT_TOLERANCE * b_norm) {
-                        break;
-                    }
+                    fallback.solve(&self.symbolic, (rhs, 1), self.par, &mut self.workspace)?;
                 }
-                rhs.copy_from_slice(&x);
             }
         }
         if rhs.iter().any(|v| !v.is_finite()) {
@@ -318,5 +374,47 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A nearly singular indefinite matrix (shifted Laplacian, one eigenvalue 1e-8, cond ~ 4e8):
+    /// f32 refinement cannot converge (cond eps_f32 ~ 24 > 1), so the single-precision solver
+    /// must refactor in f64 and agree with the double-precision solve, once per matrix.
+    #[test]
+    fn single_precision_falls_back_to_double_when_refinement_fails() {
+        let n = 50;
+        let cells: Vec<Vec<usize>> = (0..n - 1).map(|i| vec![i, i + 1]).collect();
+        let p = SparsityPattern::from_cells(n, n, 1, cells.iter().map(|c| c.as_slice()), |a, _| Some(a));
+        // eigenvalues of the Laplacian: 2 - 2 cos(k pi / (n + 1)); put the 10th at 1e-8
+        let lambda_10 = 2.0 - 2.0 * (10.0 * std::f64::consts::PI / (n as f64 + 1.0)).cos();
+        let mut values = vec![0.0; p.nnz()];
+        for i in 0..n {
+            values[p.slot(i, i).unwrap()] = 2.0 - lambda_10 + 1e-8;
+            if i + 1 < n {
+                values[p.slot(i, i + 1).unwrap()] = -1.0;
+                values[p.slot(i + 1, i).unwrap()] = -1.0;
+            }
+        }
+        let b: Vec<f64> = (0..n).map(|i| (0.3 * i as f64).sin()).collect();
+        let solve = |precision: Precision, solver: &mut Option<FaerCholesky>| {
+            let s = solver.insert(FaerCholesky::analyse_with_precision(&p, Ordering::Amd, precision).unwrap());
+            s.factorize(&p, &values).unwrap();
+            let mut x = b.clone();
+            s.solve_in_place(&mut x).unwrap();
+            x
+        };
+        let (mut double, mut single) = (None, None);
+        let x_double = solve(Precision::Double, &mut double);
+        let x_single = solve(Precision::Single, &mut single);
+        let single = single.unwrap();
+        let scale = crate::vector::norm(&x_double);
+        let diff = x_single.iter().zip(&x_double).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
+        assert!(diff < 1e-6 * scale, "single vs double: {diff} against |x| = {scale}");
+        assert_eq!(single.precision_fallbacks(), 1);
+        // a second solve with the same matrix reuses the f64 factor
+        let mut single = single;
+        let mut again = b.clone();
+        single.solve_in_place(&mut again).unwrap();
+        assert_eq!(single.precision_fallbacks(), 1);
+        assert_eq!(again, x_single);
     }
 }

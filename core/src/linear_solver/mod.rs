@@ -41,4 +41,9 @@ pub trait LinearSolver {
     }
     /// Stored entries of the factor (memory and cost measure).
     fn factor_nnz(&self) -> usize;
+    /// Matrices a reduced-precision solver had to refactor in double precision because its
+    /// refinement did not converge on them (0 for a solver without reduced precision).
+    fn precision_fallbacks(&self) -> usize {
+        0
+    }
 }

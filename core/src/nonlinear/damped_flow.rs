@@ -31,9 +31,11 @@
 //! End: when a step's static residual r(u_{n+1}) = -M v_{n+1} passes the solver's residual test,
 //! or when the move still to come, estimated from the velocity's decay ratio
 //! q = ||v_{n+1}|| / ||v_n|| < 1 as ||u_{n+1} - u_n|| q / (1 - q), is below `tolerance` times the
-//! snap's move so far (or below what the solver's correction test resolves): the end is then solved for
+//! snap's move so far, or below `tolerance` times the smallest increment the solver's correction
+//! test measures against, 1e-3 ||u|| (a body creeping along a perfectly plastic mechanism near its
+//! limit load moves so little that the snap's own move is no scale): the end is then solved for
 //! directly (r(u) = 0 by the same solver) and accepted if it moved less than twice that (else the flow
-//! goes on). A step that fails is cut fourfold, at most [`MAX_CUTS_IN_A_ROW`] times in a row.
+//! goes on, and tries again when the move to come has halved). A step that fails is cut fourfold, at most [`MAX_CUTS_IN_A_ROW`] times in a row.
 
 use super::convergence::ReferenceScales;
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
@@ -296,8 +298,9 @@ pub fn damped_flow(
     // the wrapped problem's residual at a committed step is the static one, r(u_n) (= -M v_n
     // up to the step's solve): at rest when that passes the solver's residual test
     let at_rest = |p: &dyn NonlinearProblem| newton.residual_converged(norm(p.residual()), force_scale(p));
-    // moves below this are below what the solver's correction test resolves
-    let resolution = newton.tol_displacement * 1e-3 * scales.displacement;
+    // moves below this are within the flow's tolerance of the smallest increment the solver's
+    // correction test measures against, 1e-3 ||u||
+    let resolution = tol * 1e-3 * scales.displacement;
     // the static residual of the last committed state, which a failure reports
     let mut committed_residual = norm(problem.residual());
     let (mut v, mut h) = start_velocity(problem, mass, linear, tol, &mut flow.costs)?;

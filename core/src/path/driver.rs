@@ -691,6 +691,7 @@ impl Driver<'_> {
         let (events, warnings) = self.tracker.finish(self.t);
         let s = &mut self.summary;
         s.final_time = self.t;
+        s.double_precision_refactorizations = self.linear.precision_fallbacks();
         s.plastic_dissipation = self.model.dissipation();
         s.max_equivalent_plastic_strain = self.model.max_material_output("equivalent_plastic_strain");
         s.wall_seconds = wall.elapsed().as_secs_f64();

@@ -33,6 +33,10 @@ pub struct RunSummary {
     pub newton_iterations: usize,
     /// Numeric factorizations of the tangent.
     pub factorizations: usize,
+    /// Tangents the single-precision factor could not solve to double precision by iterative
+    /// refinement (cond(K) eps_f32 near 1: a nearly singular or indefinite tangent), which
+    /// were refactored in double precision.
+    pub double_precision_refactorizations: usize,
     pub n_nodes: usize,
     pub n_cells: usize,
     pub n_free_dofs: usize,

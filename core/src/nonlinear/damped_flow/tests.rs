@@ -156,7 +156,7 @@ fn the_damped_flow_solves_each_step_only_as_accurately_as_the_step_needs() {
     for tol in [0.03, 0.003] {
         let to_equilibrium = FlowSettings { solve_share: 0.0, ..tolerance(tol) };
         for quasi in [false, true] {
-            let mut solver = |quasi| -> Box<dyn NonlinearSolver> {
+            let solver = |quasi| -> Box<dyn NonlinearSolver> {
                 if quasi { Box::new(QuasiNewtonSolver::new(newton().settings)) } else { Box::new(newton()) }
             };
             let inexact = flow_from_one_one(tolerance(tol), 1.0, &mut *solver(quasi));
@@ -176,4 +176,27 @@ fn the_damped_flow_solves_each_step_only_as_accurately_as_the_step_needs() {
             );
         }
     }
+}
+
+/// A move still to come below the flow's tolerance times the smallest increment the correction
+/// test measures against (1e-3 ||u||) ends the flow by a direct solve, however small the
+/// snap's own move: the same flow from (1, 1) (a move of 1) inside a body with ||u|| = 1e5
+/// (increments of 100 count as small) ends at the origin after at most two steps, where with
+/// ||u|| = 0 it follows the decay to the end.
+#[test]
+fn a_move_below_the_increment_scale_is_solved_for_directly() {
+    let flow = |displacement: f64| {
+        let mut p = Pair::new([1.0, 1.0], 1.0);
+        let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+        let scales = ReferenceScales { displacement, force: 0.0 };
+        let report =
+            damped_flow(&mut p, &[1.0, 1.0], &mut linear, &mut newton(), scales, &tolerance(0.03), &mut |_| {})
+                .unwrap();
+        assert!(p.u[0].abs() < 1e-10 && p.u[1].abs() < 1e-10, "the flow ends at the origin: {:?}", p.u);
+        report.steps
+    };
+    let (alone, in_a_large_body) = (flow(0.0), flow(1e5));
+    println!("steps: {alone} with ||u|| = 0, {in_a_large_body} with ||u|| = 1e5");
+    assert!(in_a_large_body <= 2, "{in_a_large_body} steps");
+    assert!(alone > 10, "{alone} steps");
 }
