@@ -35,7 +35,8 @@
 //! test measures against, 1e-3 ||u|| (a body creeping along a perfectly plastic mechanism near its
 //! limit load moves so little that the snap's own move is no scale): the end is then solved for
 //! directly (r(u) = 0 by the same solver) and accepted if it moved less than twice that (else the flow
-//! goes on, and tries again when the move to come has halved). A step that fails is cut fourfold, at most [`MAX_CUTS_IN_A_ROW`] times in a row.
+//! goes on, and tries again when the move to come has halved). A step that fails is cut fourfold,
+//! at most [`MAX_CUTS_IN_A_ROW`] times in a row.
 
 use super::convergence::ReferenceScales;
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
