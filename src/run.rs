@@ -5,6 +5,7 @@
 use crate::build::{BuiltModel, build};
 use crate::case::{
     ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec, SnapSpec, SolverSpec, StartPredictorSpec,
+    TangentSpec,
 };
 use crate::error::{Result, StictionError};
 use std::path::PathBuf;
@@ -15,7 +16,9 @@ use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
 use stiction_core::model::Model;
 use stiction_core::nonlinear::damped_flow::FlowSettings;
 use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
-use stiction_core::path::{Continuation, ContinuationMethod, RunPlan, SnapMethod, StartPredictor, run_steps};
+use stiction_core::path::{
+    Continuation, ContinuationMethod, RunPlan, SnapMethod, StartPredictor, TangentChoice, run_steps,
+};
 use stiction_core::record::{
     CyclesWriter, EventsRecorder, HistoryRecorder, MessageLog, Observer, SummaryWriter, VtkRecorder,
 };
@@ -134,6 +137,11 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
             StartPredictorSpec::None => StartPredictor::None,
         },
         snap: snap_method(&case.case.solver, &built.model),
+        tangent: match case.case.solver.tangent {
+            TangentSpec::SwitchOnFailure => TangentChoice::SwitchOnFailure,
+            TangentSpec::Consistent => TangentChoice::Consistent,
+            TangentSpec::Stabilized => TangentChoice::Stabilized,
+        },
     };
     let ordering = match case.case.solver.ordering {
         OrderingSpec::NestedDissection => Ordering::NestedDissection,

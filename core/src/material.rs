@@ -6,6 +6,7 @@
 //! rolling back (a cut step) simply discards trial. A material never mutates committed state.
 
 use crate::voigt::{Strain, Stress, Tangent};
+use std::sync::Arc;
 
 /// Why a stress update failed (reported with element, point and step by the caller).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -55,4 +56,20 @@ pub trait Material: Send + Sync {
 
     /// A stiffness scale (e.g. Young's modulus) used to choose penalties and tolerances.
     fn stiffness_scale(&self) -> f64;
+
+    /// A twin of this law with a *stabilized tangent*, for a solver whose iterations fail on
+    /// the consistent one: the same stress update, states and dissipation (so the converged
+    /// solutions are this law's), with a tangent kept regular where the consistent one loses
+    /// rank (the flow direction of a perfectly plastic point). None (the default): the law's
+    /// tangent needs no stabilizing.
+    fn stabilized(&self) -> Option<Arc<dyn Material>> {
+        None
+    }
+
+    /// Whether a point with this state flows, i.e. whether the stabilized twin's tangent
+    /// differs from this law's there (a solver switches tangents only where one does). False
+    /// by default.
+    fn flowing(&self, _state: &[f64]) -> bool {
+        false
+    }
 }

@@ -23,6 +23,10 @@ pub struct ElementSet {
     pub name: String,
     pub kernel: Box<dyn ElementKernel>,
     pub material: Arc<dyn Material>,
+    /// The material's stabilized twin ([`Material::stabilized`]), if it has one.
+    stabilized: Option<Arc<dyn Material>>,
+    /// Whether assembly uses the stabilized twin's tangent.
+    use_stabilized: bool,
     /// Flattened connectivity (gmsh local order), `kernel.n_nodes()` per cell.
     pub connectivity: Vec<usize>,
     state_committed: Vec<f64>,
@@ -47,10 +51,14 @@ impl ElementSet {
                 material.initialize_state(s);
             }
         }
+        let stabilized = material.stabilized();
+        debug_assert!(stabilized.as_ref().is_none_or(|twin| twin.n_state() == ns));
         Self {
             name: name.into(),
             kernel,
             material,
+            stabilized,
+            use_stabilized: false,
             connectivity,
             state_trial: state.clone(),
             state_committed: state,
@@ -132,7 +140,10 @@ impl ElementSet {
             first = last;
         }
         let kernel = self.kernel.as_ref();
-        let material = self.material.as_ref();
+        let material = match (&self.stabilized, self.use_stabilized) {
+            (Some(twin), true) => twin.as_ref(),
+            _ => self.material.as_ref(),
+        };
         let connectivity = &self.connectivity;
         let committed = &self.state_committed;
         let slots = &self.slots;
@@ -547,6 +558,33 @@ impl Model {
             return Err(CoreError::NonFinite("residual force vector".into()));
         }
         Ok(AssemblyStats { seconds: start.elapsed().as_secs_f64() })
+    }
+
+    /// Whether some material has a stabilized tangent ([`Material::stabilized`]) to switch to.
+    pub fn can_stabilize_tangent(&self) -> bool {
+        self.sets.iter().any(|s| s.stabilized.is_some())
+    }
+
+    /// Whether a point of a material with a stabilized tangent flows in the trial state
+    /// ([`Material::flowing`]): where the two tangents differ.
+    pub fn flowing_where_stabilizable(&self) -> bool {
+        self.sets.iter().filter(|s| s.stabilized.is_some()).any(|s| {
+            let ns = s.material.n_state();
+            ns > 0 && s.state_trial.chunks_exact(ns).any(|state| s.material.flowing(state))
+        })
+    }
+
+    /// Whether assembly uses the stabilized tangents.
+    pub fn tangent_stabilized(&self) -> bool {
+        self.sets.iter().any(|s| s.use_stabilized && s.stabilized.is_some())
+    }
+
+    /// Switches assembly to the materials' stabilized tangents (where they have one) or back
+    /// to the consistent ones. Residuals and states do not change, only the tangent.
+    pub fn stabilize_tangent(&mut self, on: bool) {
+        for set in &mut self.sets {
+            set.use_stabilized = on;
+        }
     }
 
     /// Accepts the current state as converged.

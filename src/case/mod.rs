@@ -416,6 +416,16 @@ pub struct SolverSpec {
     /// the last one.
     #[serde(default)]
     pub start_predictor: StartPredictorSpec,
+    /// Which material tangent the solvers see: "switch-on-failure" (default: the consistent
+    /// tangent until an attempt fails to converge from a state where a point flows, then the
+    /// other one, at most once per committed increment; a failed snap is retried on the other
+    /// one), "consistent" or "stabilized". The stabilized tangent of a material with one
+    /// (`j2-plasticity` hardening less than E/100) stiffens the flow direction of a flowing
+    /// point to a hardening of E/100 in the tangent alone: the same converged solutions,
+    /// reached where the consistent tangent of a perfectly plastic neck at its limit load
+    /// makes Newton cycle.
+    #[serde(default)]
+    pub tangent: TangentSpec,
     /// Consecutive cuts after which arc-length continuation takes over (default 2).
     #[serde(default = "default_arc_length_after_cuts")]
     pub arc_length_after_cuts: usize,
@@ -482,6 +492,16 @@ pub enum StartPredictorSpec {
     #[default]
     Tangent,
     None,
+}
+
+/// Which material tangent the solvers see.
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum TangentSpec {
+    #[default]
+    SwitchOnFailure,
+    Consistent,
+    Stabilized,
 }
 
 /// Fill-reducing ordering.
@@ -562,6 +582,7 @@ pub fn defaults_help() -> String {
          growth_factor = {}, continuation = \"none\" (or \"arc-length\", \"dissipation\"), arc_length_after_cuts = {}, \
          method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"), \
          refactorization_cost_ratio = 0 (measured times), start_predictor = \"tangent\" (or \"none\"), \
+         tangent = \"switch-on-failure\" (or \"consistent\", \"stabilized\"), \
          snap = \"auto\" (damped-flow for a path-dependent model, else settle; or \"settle\", \"damped-flow\"), snap_tolerance = {}, snap_max_steps = {}; \
          interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
          output.directory = out/<name>, output.vtk = true; ensemble.seed = 1, threads_per_member = 0 (auto), \

@@ -15,15 +15,21 @@
 //! displacement-controlled system snaps to ([`SnapMethod`]: by descent,
 //! [`crate::nonlinear::settle`], or along the body's overdamped motion,
 //! [`crate::nonlinear::damped_flow`], whose steps are committed so that plastic flow follows
-//! the snap's path). The state is committed as a jump and load control goes on from it. A crawl
+//! the snap's path). The state is committed as a jump and load control goes on from it; where it
+//! cannot go on from there either, the next snap goes one initial increment ahead. A crawl
 //! (load control creeping towards folds it cannot pass, [`CRAWL_COMMITS`]) is passed by snaps one
 //! initial increment ahead. At most [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row without a load
 //! step in between; then the run stops with the reason.
+//!
+//! Tangents: a failed attempt may switch the model between the materials' consistent and
+//! stabilized tangents for the attempts after it, and a failed snap is retried on the other
+//! tangent before the run stops ([`TangentSwitch`], `solver.tangent`).
 
 use super::arc_length_control::ArcLengthControl;
 use super::dissipation_control::DissipationControl;
 use super::load_control::{LoadControl, StartPredictor};
 use super::step::StepPlan;
+use super::tangent_choice::{TangentChoice, TangentSwitch};
 use super::{Attempt, Crossing, PathControl, Solvers, StepWindow};
 use crate::error::{CoreError, Result};
 use crate::linear_solver::LinearSolver;
@@ -92,6 +98,8 @@ pub struct RunPlan {
     pub start_predictor: StartPredictor,
     /// How a snap finds the state it reaches.
     pub snap: SnapMethod,
+    /// Which material tangent the solvers see.
+    pub tangent: TangentChoice,
 }
 
 /// How a snap (a jump at a fixed load to the stable state the system reaches) is solved.
@@ -155,7 +163,9 @@ pub fn run_steps(
 ) -> Result<RunSummary> {
     let wall = Instant::now();
     let first = plan.steps.first().expect("a run plan has at least one step");
+    let tangent = TangentSwitch::start(plan.tangent, model);
     let mut driver = Driver {
+        tangent,
         tracker: InterfaceTracker::new(model, &plan.interfaces),
         summary: initial_summary(model, plan, linear.factor_nnz()),
         breakpoints: breakpoints(model, plan),
@@ -272,6 +282,8 @@ struct Driver<'a> {
     largest_displacement: f64,
     /// The unit-density mass on the pattern (made at the first damped snap).
     mass: Option<Vec<f64>>,
+    /// Which material tangent the solvers see, switched after failures.
+    tangent: TangentSwitch,
 }
 
 /// What to do after handling an attempt.
@@ -391,6 +403,10 @@ impl Driver<'_> {
             entry.0 += 1;
         }
         self.model.rollback();
+        if let Some(what) = self.tangent.after_failure(self.model, failure) {
+            let text = format!("{}: {what} at t = {:.6}", self.plan.steps[si].name, self.t);
+            self.observers.iter_mut().for_each(|o| o.message(&text));
+        }
         self.load.forget();
         self.summary.cut_increments += 1;
         self.cuts_since_commit += 1;
@@ -443,10 +459,14 @@ impl Driver<'_> {
     }
 
     /// Neither control can go on: settle just past the committed time (see the module
-    /// documentation) and commit the snapped state, or stop with both reasons.
+    /// documentation) and commit the snapped state, or stop with both reasons. Where load
+    /// control could not go on from the state the last snap reached either (that snap moved
+    /// the load by no more than the minimum increment), the snap goes one initial increment
+    /// ahead, as past a crawl: the path has no equilibrium within reach of load control there.
     fn snap(&mut self, si: usize, reason: &str) -> Result<Flow> {
-        let minimum = self.plan.steps[si].incrementation.minimum;
-        self.snap_over(si, reason, minimum)
+        let incrementation = &self.plan.steps[si].incrementation;
+        let dt = if self.snaps_in_a_row == 0 { incrementation.minimum } else { incrementation.initial };
+        self.snap_over(si, reason, dt)
     }
 
     /// Settles at the target `dt` past the committed time (clipped to the step and the next
@@ -474,7 +494,18 @@ impl Driver<'_> {
         };
         let target = self.load.target(&window);
         self.model.set_time(target);
-        let (settled, damped) = self.solve_snap(&step.name, target);
+        let (mut settled, mut damped) = self.solve_snap(&step.name, target);
+        if let Err(failure) = &settled
+            && let Some(what) = {
+                // a damped flow goes on from its last committed step
+                self.model.rollback();
+                self.tangent.after_failed_snap(self.model, failure)
+            }
+        {
+            let text = format!("{}: snapping at t = {target:.6}: {what} after: {failure}", step.name);
+            self.observers.iter_mut().for_each(|o| o.message(&text));
+            (settled, damped) = self.solve_snap(&step.name, target);
+        }
         let text = match &settled {
             Ok((_, how)) => format!("{}: snapped at t = {target:.6} ({how})", step.name),
             Err(_) => format!("{}: no stable state found at t = {target:.6}", step.name),
@@ -621,6 +652,7 @@ impl Driver<'_> {
             self.load.set_increment(target - self.t);
         }
         self.model.commit();
+        self.tangent.committed();
         self.largest_displacement = self.largest_displacement.max(norm(&self.model.displacement));
         self.t = target;
         self.add_report(&report);
@@ -692,6 +724,7 @@ impl Driver<'_> {
         let s = &mut self.summary;
         s.final_time = self.t;
         s.double_precision_refactorizations = self.linear.precision_fallbacks();
+        s.tangent_switches = self.tangent.switches;
         s.plastic_dissipation = self.model.dissipation();
         s.max_equivalent_plastic_strain = self.model.max_material_output("equivalent_plastic_strain");
         s.wall_seconds = wall.elapsed().as_secs_f64();

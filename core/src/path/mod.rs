@@ -11,12 +11,14 @@ mod dissipation_control;
 pub mod driver;
 mod load_control;
 pub mod step;
+pub mod tangent_choice;
 
 pub use arc_length_control::ArcLengthControl;
 pub use dissipation_control::DissipationControl;
 pub use driver::{Continuation, ContinuationMethod, RunPlan, SnapMethod, run_steps};
 pub use load_control::{LoadControl, StartPredictor};
 pub use step::{Incrementation, StepPlan};
+pub use tangent_choice::TangentChoice;
 
 use crate::linear_solver::LinearSolver;
 use crate::model::Model;

@@ -37,6 +37,9 @@ pub struct RunSummary {
     /// refinement (cond(K) eps_f32 near 1: a nearly singular or indefinite tangent), which
     /// were refactored in double precision.
     pub double_precision_refactorizations: usize,
+    /// Switches between the consistent and the stabilized material tangent after failed
+    /// attempts (`solver.tangent`, [`crate::path::TangentChoice`]).
+    pub tangent_switches: usize,
     pub n_nodes: usize,
     pub n_cells: usize,
     pub n_free_dofs: usize,
