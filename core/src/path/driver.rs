@@ -15,11 +15,11 @@
 //! displacement-controlled system snaps to ([`SnapMethod`]: by descent,
 //! [`crate::nonlinear::settle`], or along the body's overdamped motion,
 //! [`crate::nonlinear::damped_flow`], whose steps are committed so that plastic flow follows
-//! the snap's path). The state is committed as a jump and load control goes on from it; where it
-//! cannot go on from there either, the next snap goes one initial increment ahead. A crawl
+//! the snap's path). The state is committed as a jump and load control goes on from it. A crawl
 //! (load control creeping towards folds it cannot pass, [`CRAWL_COMMITS`]) is passed by snaps one
-//! initial increment ahead. At most [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row without a load
-//! step in between; then the run stops with the reason.
+//! initial increment ahead. After [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row without a load
+//! step in between, the next snap goes one initial increment ahead too; where that is no further
+//! than the minimum increment, the run stops with the reason.
 //!
 //! Tangents: a failed attempt may switch the model between the materials' consistent and
 //! stabilized tangents for the attempts after it, and a failed snap is retried on the other
@@ -56,7 +56,8 @@ pub const JUMP_RATIO: f64 = 5.0;
 const FLOW_PROGRESS_EVERY: usize = 20;
 
 /// Snaps in a row (no ordinary increment converging in between, none moving the load on by more
-/// than the minimum increment) after which the run stops.
+/// than the minimum increment) after which the next snap goes one initial increment ahead (or
+/// the run stops, where that is no further than the minimum increment).
 pub const MAX_SNAPS_WITHOUT_PROGRESS: usize = 3;
 
 /// A crawl: this many committed load-controlled increments in a row, each below
@@ -459,13 +460,14 @@ impl Driver<'_> {
     }
 
     /// Neither control can go on: settle just past the committed time (see the module
-    /// documentation) and commit the snapped state, or stop with both reasons. Where load
-    /// control could not go on from the state the last snap reached either (that snap moved
-    /// the load by no more than the minimum increment), the snap goes one initial increment
-    /// ahead, as past a crawl: the path has no equilibrium within reach of load control there.
+    /// documentation) and commit the snapped state, or stop with both reasons. Where
+    /// [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row at the minimum increment found no path
+    /// onward (load control could not go on from the states they reached), the snap goes one
+    /// initial increment ahead, as past a crawl.
     fn snap(&mut self, si: usize, reason: &str) -> Result<Flow> {
         let incrementation = &self.plan.steps[si].incrementation;
-        let dt = if self.snaps_in_a_row == 0 { incrementation.minimum } else { incrementation.initial };
+        let stuck = self.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS;
+        let dt = if stuck { incrementation.initial } else { incrementation.minimum };
         self.snap_over(si, reason, dt)
     }
 
@@ -473,7 +475,7 @@ impl Driver<'_> {
     /// breakpoint) and commits it, or stops with `reason` and why settling failed. Errors are
     /// those of committing (writing the outputs).
     fn snap_over(&mut self, si: usize, reason: &str, dt: f64) -> Result<Flow> {
-        if self.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS {
+        if self.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS && dt <= self.plan.steps[si].incrementation.minimum {
             return Ok(Flow::Stop(format!(
                 "{reason}; {MAX_SNAPS_WITHOUT_PROGRESS} snaps in a row found no path onward from t = {:.6}",
                 self.t
