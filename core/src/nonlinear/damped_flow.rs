@@ -75,12 +75,16 @@ impl Default for FlowSettings {
 /// What a flow took.
 #[derive(Debug, Clone, Default)]
 pub struct FlowReport {
-    /// Newton iterations, factorizations and seconds of all its steps.
+    /// Newton iterations, factorizations and seconds of all its step solves that converged
+    /// (accepted, or redone for accuracy) and of the direct end solves that converged.
     pub costs: IncrementReport,
     /// Accepted (committed) steps.
     pub steps: usize,
     /// Steps redone shorter (too inaccurate, or not converged).
     pub rejected: usize,
+    /// Wall seconds of the solves that did not converge (steps redone shorter, direct end
+    /// solves that failed); none of their costs are in `costs`.
+    pub failed_solve_seconds: f64,
 }
 
 /// One step of the flow as a problem of its own: residual r(u) + M (u - start)/(beta h),
@@ -315,7 +319,9 @@ pub fn damped_flow(
         let formula = Formula::new(&u_n, &v, previous.as_ref(), h);
         problem.set_free_values(&formula.predicted);
         let mut step = DampedStep::new(&mut *problem, mass, &formula, &u_n, h, settings);
+        let solving = Instant::now();
         if let Err(e) = solver.solve(&mut step, linear, t, scales).map(|report| flow.costs.add_costs(&report)) {
+            flow.failed_solve_seconds += solving.elapsed().as_secs_f64();
             problem.rollback();
             flow.rejected += 1;
             cuts_in_a_row += 1;
@@ -354,13 +360,17 @@ pub fn damped_flow(
         let negligible = (tol * so_far).max(resolution);
         if to_come < negligible && to_come < tail_bar {
             // a failed or too long direct solve is a miss: the flow goes on
-            if let Ok(report) = solver.solve(problem, linear, t, scales) {
-                flow.costs.add_costs(&report);
-                let end = problem.free_values();
-                let last = distance_inf(&end, &u_n);
-                if last <= 2.0 * negligible {
-                    return Ok(flow);
+            let solving = Instant::now();
+            match solver.solve(problem, linear, t, scales) {
+                Ok(report) => {
+                    flow.costs.add_costs(&report);
+                    let end = problem.free_values();
+                    let last = distance_inf(&end, &u_n);
+                    if last <= 2.0 * negligible {
+                        return Ok(flow);
+                    }
                 }
+                Err(_) => flow.failed_solve_seconds += solving.elapsed().as_secs_f64(),
             }
             problem.rollback();
             tail_bar = 0.5 * to_come;

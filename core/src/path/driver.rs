@@ -539,12 +539,30 @@ impl Driver<'_> {
     }
 
     /// Solves the snap at `target` from the committed state by the plan's [`SnapMethod`]: the
-    /// costs and how it went, or why it failed, and whether it was a damped flow.
+    /// costs and how it went, or why it failed, and whether it was a damped flow. The wall time
+    /// of a failed snap, and of the solves a successful flow did not converge, is counted as
+    /// discarded.
     fn solve_snap(
         &mut self,
         step_name: &str,
         target: f64,
     ) -> (std::result::Result<(IncrementReport, String), IncrementFailure>, bool) {
+        let started = Instant::now();
+        let (solved, damped, failed_solve_seconds) = self.snap_by_plan(step_name, target);
+        self.summary.discarded_attempt_seconds += match &solved {
+            Ok(_) => failed_solve_seconds,
+            Err(_) => started.elapsed().as_secs_f64(),
+        };
+        (solved, damped)
+    }
+
+    /// [`Self::solve_snap`] without the accounting: also the seconds of the flow's solves that
+    /// did not converge.
+    fn snap_by_plan(
+        &mut self,
+        step_name: &str,
+        target: f64,
+    ) -> (std::result::Result<(IncrementReport, String), IncrementFailure>, bool, f64) {
         let scales = self.scales();
         let flow = match self.plan.snap {
             SnapMethod::DampedFlow(flow) => {
@@ -561,7 +579,7 @@ impl Driver<'_> {
                 let text = format!("{} descent steps", r.iterations);
                 (r, text)
             });
-            return (settled, false);
+            return (settled, false, 0.0);
         };
         let observers = &mut *self.observers;
         let mut progress = |f: &FlowReport| {
@@ -570,10 +588,13 @@ impl Driver<'_> {
                 observers.iter_mut().for_each(|o| o.message(&text));
             }
         };
-        let flowed =
-            damped_flow(self.model, mass, &mut *self.linear, &mut *self.nonlinear, scales, &flow, &mut progress)
-                .map(|f| (f.costs, format!("{} damped flow steps, {} redone", f.steps, f.rejected)));
-        (flowed, true)
+        match damped_flow(self.model, mass, &mut *self.linear, &mut *self.nonlinear, scales, &flow, &mut progress) {
+            Ok(f) => {
+                let text = format!("{} damped flow steps, {} redone", f.steps, f.rejected);
+                (Ok((f.costs, text)), true, f.failed_solve_seconds)
+            }
+            Err(e) => (Err(e), true, 0.0),
+        }
     }
 
     /// Whether a converged load-controlled increment to `target` jumped to another branch:

@@ -50,8 +50,9 @@ pub struct RunSummary {
     pub factorization_seconds: f64,
     pub solve_seconds: f64,
     /// Wall seconds of the attempts that were not committed: those that failed and were cut,
-    /// and converged ones rolled back as jumps (the assembly, factorization and solve seconds
-    /// above are those of the committed increments only).
+    /// converged ones rolled back as jumps, snaps that failed, and the solves that did not
+    /// converge inside a damped-flow snap (the assembly, factorization and solve seconds above
+    /// are those of the committed increments only).
     pub discarded_attempt_seconds: f64,
     pub plastic_dissipation: f64,
     /// The largest equivalent plastic strain of any integration point at the end (None without

@@ -10,7 +10,9 @@ use super::{FlowSettings, damped_flow};
 use crate::error::Result;
 use crate::linear_solver::{FaerCholesky, LinearSolver};
 use crate::nonlinear::newton::NewtonSolver;
-use crate::nonlinear::{NewtonSettings, NonlinearSolver, QuasiNewtonSolver, ReferenceScales};
+use crate::nonlinear::{
+    IncrementFailure, IncrementReport, NewtonSettings, NonlinearSolver, QuasiNewtonSolver, ReferenceScales,
+};
 use crate::problem::NonlinearProblem;
 use crate::sparse::SparsityPattern;
 
@@ -199,4 +201,60 @@ fn a_move_below_the_increment_scale_is_solved_for_directly() {
     println!("steps: {alone} with ||u|| = 0, {in_a_large_body} with ||u|| = 1e5");
     assert!(in_a_large_body <= 2, "{in_a_large_body} steps");
     assert!(alone > 10, "{alone} steps");
+}
+
+/// Newton that fails its first `failures` solves, after `pause` each.
+struct FailsFirst {
+    newton: NewtonSolver,
+    failures: usize,
+    pause: std::time::Duration,
+}
+
+impl NonlinearSolver for FailsFirst {
+    fn solve(
+        &mut self,
+        problem: &mut dyn NonlinearProblem,
+        linear: &mut dyn LinearSolver,
+        t: f64,
+        scales: ReferenceScales,
+    ) -> std::result::Result<IncrementReport, IncrementFailure> {
+        if self.failures == 0 {
+            return self.newton.solve(problem, linear, t, scales);
+        }
+        self.failures -= 1;
+        std::thread::sleep(self.pause);
+        Err(IncrementFailure::Diverged { iterations: 3, residual: 1.0 })
+    }
+
+    fn settings(&self) -> &NewtonSettings {
+        &self.newton.settings
+    }
+}
+
+/// Step solves that do not converge are redone shorter; their wall time is reported apart
+/// from the costs of the solves that converged (which the driver counts as committed).
+#[test]
+fn the_wall_time_of_step_solves_that_failed_is_reported() {
+    let pause = std::time::Duration::from_millis(20);
+    let mut solver = FailsFirst { newton: newton(), failures: 2, pause };
+    let mut p = Pair::new([1.0, 1.0], 1.0);
+    let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+    let started = std::time::Instant::now();
+    let report = damped_flow(
+        &mut p,
+        &[1.0, 1.0],
+        &mut linear,
+        &mut solver,
+        ReferenceScales::default(),
+        &tolerance(0.03),
+        &mut |_| {},
+    )
+    .unwrap();
+    let wall = started.elapsed().as_secs_f64();
+    assert!(p.u[0].abs() < 1e-10 && p.u[1].abs() < 1e-10, "the flow still ends at the origin: {:?}", p.u);
+    assert!(report.rejected >= 2, "{} redone", report.rejected);
+    let failed = report.failed_solve_seconds;
+    assert!(failed >= 2.0 * pause.as_secs_f64() && failed < wall, "{failed} s failed of {wall} s");
+    let converged = report.costs.assembly_seconds + report.costs.factorization_seconds + report.costs.solve_seconds;
+    assert!(converged + failed <= wall, "{converged} + {failed} s in {wall} s");
 }
