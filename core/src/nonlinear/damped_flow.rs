@@ -7,10 +7,11 @@
 //! with M the consistent mass of unit density ([`NonlinearProblem::mass`]: the L2 metric of
 //! displacement fields) and tau a fictitious time. The drag coefficient only rescales tau, so
 //! the path in u has no free parameter, and it converges with the mesh (M discretizes the L2
-//! product): a 3D body and its axisymmetric section follow the same path. Every step is
-//! committed, so plastic flow and hysteretic interface laws follow the path (ABAQUS's
-//! `*STATIC, STABILIZE` damps with the same mass-proportional forces, with a damping factor
-//! instead of an accuracy). The flow ends on the stable equilibrium the snap reaches.
+//! product): a 3D body and its axisymmetric section follow the same path. The steps are
+//! committed (see Commits below), so plastic flow and hysteretic interface laws follow the
+//! path (ABAQUS's `*STATIC, STABILIZE` damps with the same mass-proportional forces, with a
+//! damping factor instead of an accuracy). The flow ends on the stable equilibrium the snap
+//! reaches.
 //!
 //! Time stepping: the first step is backward Euler, the later ones variable-step BDF2 (both
 //! L-stable: the stiff modes of an elastic body are damped out, not rung); a step of length h solves
@@ -36,7 +37,22 @@
 //! limit load moves so little that the snap's own move is no scale): the end is then solved for
 //! directly (r(u) = 0 by the same solver) and accepted if it moved less than twice that (else the flow
 //! goes on, and tries again when the move to come has halved). A step that fails is cut fourfold,
-//! at most [`MAX_CUTS_IN_A_ROW`] times in a row.
+//! at most [`MAX_CUTS_IN_A_ROW`] times in a row and not below a move the solver's correction test
+//! resolves (1e-6 x 1e-3 ||u||); a flow that cannot go on then ends at its last accepted state if
+//! that state's static residual is within [`STALLED_REST_FACTOR`] of the residual test (the
+//! report says by how much), and fails otherwise.
+//!
+//! Commits: an accepted step becomes the history the next steps start from (plastic strains,
+//! interface states) once the body has moved, since the last commit, at least the move the flow
+//! counts as negligible (the bar above: `tolerance` times the snap's move so far, or the
+//! resolution); shorter steps are spanned by one update from the last committed state. A step
+//! committed after a move below that bar leaves each point that yielded in it exactly on its
+//! yield surface, at the kink of its response: near rest, where steps move the body 1e-12 to
+//! 1e-10 nm (4 nm elements), Newton's iterations then switch such points between their elastic
+//! and plastic branches and cycle with either tangent (the residual stalls a few times above
+//! the test, the step is cut until it no longer moves u, and the snap fails). Spanning a move
+//! below the flow's tolerance by one backward-Euler update changes the path by less than that
+//! tolerance.
 
 use super::convergence::ReferenceScales;
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
@@ -78,13 +94,19 @@ pub struct FlowReport {
     /// Newton iterations, factorizations and seconds of all its step solves that converged
     /// (accepted, or redone for accuracy) and of the direct end solves that converged.
     pub costs: IncrementReport,
-    /// Accepted (committed) steps.
+    /// Accepted steps.
     pub steps: usize,
+    /// Accepted steps committed (see the module documentation: a step that moved the body
+    /// less than the flow's negligible move since the last commit is not).
+    pub commits: usize,
     /// Steps redone shorter (too inaccurate, or not converged).
     pub rejected: usize,
     /// Wall seconds of the solves that did not converge (steps redone shorter, direct end
     /// solves that failed); none of their costs are in `costs`.
     pub failed_solve_seconds: f64,
+    /// Set when the flow ended because its steps stalled near rest: the end state's static
+    /// residual over the solver's residual test (at most [`STALLED_REST_FACTOR`]).
+    pub stalled_at_residual_ratio: Option<f64>,
 }
 
 /// One step of the flow as a problem of its own: residual r(u) + M (u - start)/(beta h),
@@ -275,10 +297,36 @@ impl Formula {
     }
 }
 
+/// A flow whose steps can no longer be solved (cut [`MAX_CUTS_IN_A_ROW`] times in a row, or
+/// below a move the correction test resolves) ends at its last accepted state when that
+/// state's static residual is within this factor of the solver's residual test: near rest, the
+/// points that yielded sit at the kink of their response, where Newton's iterations may cycle a
+/// few times above the test (see Commits in the module documentation).
+pub const STALLED_REST_FACTOR: f64 = 100.0;
+
+/// Ends a flow whose steps stalled at its last accepted state `u_n` (made the problem's
+/// assembled trial state) when its static residual is `ratio` <= [`STALLED_REST_FACTOR`] times
+/// the residual test; None (the flow fails) otherwise.
+fn end_stalled_near_rest(
+    problem: &mut dyn NonlinearProblem,
+    u_n: &[f64],
+    ratio: f64,
+    mut flow: FlowReport,
+) -> Option<FlowReport> {
+    if ratio.is_nan() || ratio > STALLED_REST_FACTOR {
+        return None;
+    }
+    problem.set_free_values(u_n);
+    problem.assemble(true).ok()?;
+    flow.stalled_at_residual_ratio = Some(ratio);
+    Some(flow)
+}
+
 /// Follows the flow at the problem's current time from its trial state (the committed one) to
 /// a stable equilibrium (see the module documentation); `mass` is [`NonlinearProblem::mass`].
-/// Every accepted step is committed; on success the problem holds the end state as its trial
-/// state (not committed). On failure the problem is at the last committed step. `progress` is
+/// Accepted steps are committed (except those that moved too little, see the module
+/// documentation); on success the problem holds the end state as its trial state (not
+/// committed). On failure the problem is at the last committed step. `progress` is
 /// told of every accepted step (long flows report how far they are).
 pub fn damped_flow(
     problem: &mut dyn NonlinearProblem,
@@ -300,17 +348,20 @@ pub fn damped_flow(
     if newton.residual_negligible(norm(problem.residual()), force_scale(problem)) {
         return Ok(flow);
     }
-    // the wrapped problem's residual at a committed step is the static one, r(u_n) (= -M v_n
+    // the wrapped problem's residual at an accepted step is the static one, r(u_n) (= -M v_n
     // up to the step's solve): at rest when that passes the solver's residual test
     let at_rest = |p: &dyn NonlinearProblem| newton.residual_converged(norm(p.residual()), force_scale(p));
     // moves below this are within the flow's tolerance of the smallest increment the solver's
     // correction test measures against, 1e-3 ||u||
     let resolution = tol * 1e-3 * scales.displacement;
-    // the static residual of the last committed state, which a failure reports
+    // the static residual of the last accepted state, which a failure reports
     let mut committed_residual = norm(problem.residual());
     let (mut v, mut h) = start_velocity(problem, mass, linear, tol, &mut flow.costs)?;
     let origin = problem.free_values();
     let mut u_n = origin.clone();
+    // the last committed state, and the move from it after which a step is committed
+    let mut committed = origin.clone();
+    let mut commit_bar = resolution;
     let mut previous: Option<PreviousStep> = None;
     let mut cuts_in_a_row = 0;
     // the end is tried directly when the move to come is below this too (halved after a miss)
@@ -325,8 +376,12 @@ pub fn damped_flow(
             problem.rollback();
             flow.rejected += 1;
             cuts_in_a_row += 1;
-            if cuts_in_a_row > MAX_CUTS_IN_A_ROW {
-                return Err(e);
+            // a step that would move the body less than the correction test resolves cannot
+            // be verified: cutting it further is no use
+            let unresolved = h * norm_inf(&v) < newton.tol_displacement * 1e-3 * scales.displacement;
+            if cuts_in_a_row > MAX_CUTS_IN_A_ROW || unresolved {
+                let test = newton.tol_residual * force_scale(problem);
+                return end_stalled_near_rest(problem, &u_n, committed_residual / test, flow).ok_or(e);
             }
             h *= 0.25;
             continue;
@@ -342,7 +397,11 @@ pub fn damped_flow(
             continue;
         }
         cuts_in_a_row = 0;
-        problem.commit();
+        if distance_inf(&u, &committed) >= commit_bar {
+            problem.commit();
+            committed.clone_from(&u);
+            flow.commits += 1;
+        }
         flow.steps += 1;
         progress(&flow);
         let decay = norm(&v_new) / norm(&v);
@@ -350,7 +409,7 @@ pub fn damped_flow(
         previous = Some(PreviousStep { u: u_prev, v: v_prev, h });
         // BDF2 stays zero-stable for step ratios below 1 + sqrt 2
         h *= step_factor(tol, moved, error, formula.order, 2.0);
-        // the wrapped problem's residual at the committed state is the static one, r(u_n)
+        // the wrapped problem's residual at the accepted state is the static one, r(u_n)
         committed_residual = norm(problem.residual());
         if at_rest(problem) {
             return Ok(flow);
@@ -358,6 +417,7 @@ pub fn damped_flow(
         let to_come = if decay < 1.0 { moved * decay / (1.0 - decay) } else { f64::INFINITY };
         let so_far = distance_inf(&u_n, &origin);
         let negligible = (tol * so_far).max(resolution);
+        commit_bar = negligible;
         if to_come < negligible && to_come < tail_bar {
             // a failed or too long direct solve is a miss: the flow goes on
             let solving = Instant::now();

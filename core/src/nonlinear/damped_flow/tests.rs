@@ -6,7 +6,7 @@
 //! as the second-order time stepping predicts, and each step solved in few iterations (to the
 //! step's accuracy, not to equilibrium's).
 
-use super::{FlowSettings, damped_flow};
+use super::{FlowSettings, STALLED_REST_FACTOR, damped_flow};
 use crate::error::Result;
 use crate::linear_solver::{FaerCholesky, LinearSolver};
 use crate::nonlinear::newton::NewtonSolver;
@@ -203,6 +203,38 @@ fn a_move_below_the_increment_scale_is_solved_for_directly() {
     assert!(alone > 10, "{alone} steps");
 }
 
+/// A step is committed once the body has moved the flow's negligible move (tolerance times the
+/// move so far) since the last commit: on the linear flow from (1, 1), whose tail moves less and
+/// less, consecutive commits are at least that far apart, fewer steps are committed than
+/// accepted, and every committed state still lies on the exact path.
+#[test]
+fn a_step_is_committed_only_after_a_move_the_flow_counts() {
+    let tol = 0.03;
+    let mut p = Pair::new([1.0, 1.0], 0.0);
+    let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+    let flow = damped_flow(
+        &mut p,
+        &[1.0, 1.0],
+        &mut linear,
+        &mut newton(),
+        ReferenceScales::default(),
+        &tolerance(tol),
+        &mut |_| {},
+    )
+    .unwrap();
+    let distance = |a: &[f64; 2], b: &[f64; 2]| (a[0] - b[0]).abs().max((a[1] - b[1]).abs());
+    let start = p.committed[0];
+    for pair in p.committed.windows(2) {
+        let (apart, so_far) = (distance(&pair[1], &pair[0]), distance(&pair[0], &start));
+        assert!(apart >= tol * so_far, "commits {apart:.3e} apart after a move of {so_far:.3e}");
+    }
+    println!("{} of {} accepted steps committed", flow.commits, flow.steps);
+    assert_eq!(flow.commits, p.committed.len() - 1);
+    assert!(flow.commits < flow.steps, "{} of {} steps committed", flow.commits, flow.steps);
+    let error = p.committed.iter().map(|c| (c[1] - exact_y(c[0], 0.0)).abs()).fold(0.0, f64::max);
+    assert!(error < 0.5 * tol, "{error}");
+}
+
 /// Newton that fails its first `failures` solves, after `pause` each.
 struct FailsFirst {
     newton: NewtonSolver,
@@ -257,4 +289,61 @@ fn the_wall_time_of_step_solves_that_failed_is_reported() {
     assert!(failed >= 2.0 * pause.as_secs_f64() && failed < wall, "{failed} s failed of {wall} s");
     let converged = report.costs.assembly_seconds + report.costs.factorization_seconds + report.costs.solve_seconds;
     assert!(converged + failed <= wall, "{converged} + {failed} s in {wall} s");
+}
+
+/// Newton for the flow's steps until the static residual at a step's predicted state (|(u_0,
+/// 10 u_1)| on the linear pair) falls below `stall_below`; it fails every step after that, and
+/// every direct solve of the end: a flow whose steps stall near rest.
+struct StallsNearRest {
+    newton: NewtonSolver,
+    stall_below: f64,
+}
+
+impl NonlinearSolver for StallsNearRest {
+    fn solve(
+        &mut self,
+        problem: &mut dyn NonlinearProblem,
+        linear: &mut dyn LinearSolver,
+        t: f64,
+        scales: ReferenceScales,
+    ) -> std::result::Result<IncrementReport, IncrementFailure> {
+        let u = problem.free_values();
+        let static_residual = (u[0] * u[0] + 100.0 * u[1] * u[1]).sqrt();
+        if problem.integrator_step().is_none() || static_residual < self.stall_below {
+            return Err(IncrementFailure::Diverged { iterations: 10, residual: static_residual });
+        }
+        self.newton.solve(problem, linear, t, scales)
+    }
+
+    fn settings(&self) -> &NewtonSettings {
+        &self.newton.settings
+    }
+}
+
+/// A flow whose steps stall where its static residual is within [`STALLED_REST_FACTOR`] of the
+/// residual test (1e-12 here) ends at its last accepted state and says by how much; one that
+/// stalls farther from rest fails.
+#[test]
+fn a_flow_that_stalls_near_rest_ends_there_and_one_that_stalls_farther_fails() {
+    let flow = |stall_below: f64| {
+        let mut p = Pair::new([1.0, 1.0], 0.0);
+        let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+        let mut solver = StallsNearRest { newton: newton(), stall_below };
+        let scales = ReferenceScales::default();
+        let result = damped_flow(&mut p, &[1.0, 1.0], &mut linear, &mut solver, scales, &tolerance(0.03), &mut |_| {});
+        (result, p)
+    };
+    let (near, p) = flow(3e-11);
+    let report = near.expect("a stall near rest ends the flow");
+    let ratio = report.stalled_at_residual_ratio.expect("the stall is reported");
+    let residual = (p.residual[0].powi(2) + p.residual[1].powi(2)).sqrt();
+    println!("stalled at {ratio:.1} times the test; the end state's residual {residual:.3e}");
+    assert!(ratio <= STALLED_REST_FACTOR && (residual - ratio * 1e-12).abs() <= 1e-3 * residual);
+    assert!(residual >= 1e-12, "the flow did not come to rest by itself: {residual:.3e}");
+    let (far, _) = flow(1e-9);
+    assert!(
+        far.is_err(),
+        "a stall at about 1000 times the test ends the flow: {:?}",
+        far.map(|r| r.stalled_at_residual_ratio)
+    );
 }
