@@ -54,7 +54,7 @@
 //! below the flow's tolerance by one backward-Euler update changes the path by less than that
 //! tolerance.
 
-use super::convergence::ReferenceScales;
+use super::convergence::{NewtonSettings, ReferenceScales};
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
 use crate::error::Result;
 use crate::linear_solver::LinearSolver;
@@ -304,20 +304,26 @@ impl Formula {
 /// few times above the test (see Commits in the module documentation).
 pub const STALLED_REST_FACTOR: f64 = 100.0;
 
-/// Ends a flow whose steps stalled at its last accepted state `u_n` (made the problem's
-/// assembled trial state) when its static residual is `ratio` <= [`STALLED_REST_FACTOR`] times
-/// the residual test; None (the flow fails) otherwise.
+/// Ends a flow whose steps stalled at its last accepted state `u_n`: made the problem's
+/// assembled trial state, it ends the flow when its static residual is within
+/// [`STALLED_REST_FACTOR`] times the solver's residual test there; otherwise the problem is
+/// rolled back to the last committed step and None says the flow fails.
 fn end_stalled_near_rest(
     problem: &mut dyn NonlinearProblem,
     u_n: &[f64],
-    ratio: f64,
+    newton: &NewtonSettings,
+    scales: ReferenceScales,
     mut flow: FlowReport,
 ) -> Option<FlowReport> {
+    problem.set_free_values(u_n);
+    let ratio = match problem.assemble(true) {
+        Ok(()) => norm(problem.residual()) / (newton.tol_residual * newton.force_scale(problem.force_norm(), scales)),
+        Err(_) => f64::NAN,
+    };
     if ratio.is_nan() || ratio > STALLED_REST_FACTOR {
+        problem.rollback();
         return None;
     }
-    problem.set_free_values(u_n);
-    problem.assemble(true).ok()?;
     flow.stalled_at_residual_ratio = Some(ratio);
     Some(flow)
 }
@@ -380,8 +386,7 @@ pub fn damped_flow(
             // be verified: cutting it further is no use
             let unresolved = h * norm_inf(&v) < newton.tol_displacement * 1e-3 * scales.displacement;
             if cuts_in_a_row > MAX_CUTS_IN_A_ROW || unresolved {
-                let test = newton.tol_residual * force_scale(problem);
-                return end_stalled_near_rest(problem, &u_n, committed_residual / test, flow).ok_or(e);
+                return end_stalled_near_rest(problem, &u_n, &newton, scales, flow).ok_or(e);
             }
             h *= 0.25;
             continue;
