@@ -37,10 +37,9 @@
 //! limit load moves so little that the snap's own move is no scale): the end is then solved for
 //! directly (r(u) = 0 by the same solver) and accepted if it moved less than twice that (else the flow
 //! goes on, and tries again when the move to come has halved). A step that fails is cut fourfold,
-//! at most [`MAX_CUTS_IN_A_ROW`] times in a row and not below a move the solver's correction test
-//! resolves (1e-6 x 1e-3 ||u||); a flow that cannot go on then ends at its last accepted state if
-//! that state's static residual is within [`STALLED_REST_FACTOR`] of the residual test (the
-//! report says by how much), and fails otherwise.
+//! at most [`MAX_CUTS_IN_A_ROW`] times in a row; a flow that cannot go on then ends at its last
+//! accepted state if that state's static residual is within [`STALLED_REST_FACTOR`] of the
+//! residual test (the report says by how much), and fails otherwise.
 //!
 //! Commits: an accepted step becomes the history the next steps start from (plastic strains,
 //! interface states) once the body has moved, since the last commit, at least the move the flow
@@ -297,8 +296,8 @@ impl Formula {
     }
 }
 
-/// A flow whose steps can no longer be solved (cut [`MAX_CUTS_IN_A_ROW`] times in a row, or
-/// below a move the correction test resolves) ends at its last accepted state when that
+/// A flow whose steps can no longer be solved (cut [`MAX_CUTS_IN_A_ROW`] times in a row) ends
+/// at its last accepted state when that
 /// state's static residual is within this factor of the solver's residual test: near rest, the
 /// points that yielded sit at the kink of their response, where Newton's iterations may cycle a
 /// few times above the test (see Commits in the module documentation).
@@ -382,10 +381,7 @@ pub fn damped_flow(
             problem.rollback();
             flow.rejected += 1;
             cuts_in_a_row += 1;
-            // a step that would move the body less than the correction test resolves cannot
-            // be verified: cutting it further is no use
-            let unresolved = h * norm_inf(&v) < newton.tol_displacement * 1e-3 * scales.displacement;
-            if cuts_in_a_row > MAX_CUTS_IN_A_ROW || unresolved {
+            if cuts_in_a_row > MAX_CUTS_IN_A_ROW {
                 return end_stalled_near_rest(problem, &u_n, &newton, scales, flow).ok_or(e);
             }
             h *= 0.25;
