@@ -235,14 +235,14 @@ fn a_step_is_committed_only_after_a_move_the_flow_counts() {
     assert!(error < 0.5 * tol, "{error}");
 }
 
-/// Newton that fails its first `failures` solves, after `pause` each.
-struct FailsFirst {
+/// Newton, except that it fails (as diverged) every solve `refuses` names from the problem it
+/// is given.
+struct Refusing<F: FnMut(&dyn NonlinearProblem) -> bool> {
     newton: NewtonSolver,
-    failures: usize,
-    pause: std::time::Duration,
+    refuses: F,
 }
 
-impl NonlinearSolver for FailsFirst {
+impl<F: FnMut(&dyn NonlinearProblem) -> bool> NonlinearSolver for Refusing<F> {
     fn solve(
         &mut self,
         problem: &mut dyn NonlinearProblem,
@@ -250,12 +250,10 @@ impl NonlinearSolver for FailsFirst {
         t: f64,
         scales: ReferenceScales,
     ) -> std::result::Result<IncrementReport, IncrementFailure> {
-        if self.failures == 0 {
-            return self.newton.solve(problem, linear, t, scales);
+        if (self.refuses)(&*problem) {
+            return Err(IncrementFailure::Diverged { iterations: 3, residual: 1.0 });
         }
-        self.failures -= 1;
-        std::thread::sleep(self.pause);
-        Err(IncrementFailure::Diverged { iterations: 3, residual: 1.0 })
+        self.newton.solve(problem, linear, t, scales)
     }
 
     fn settings(&self) -> &NewtonSettings {
@@ -267,8 +265,18 @@ impl NonlinearSolver for FailsFirst {
 /// from the costs of the solves that converged (which the driver counts as committed).
 #[test]
 fn the_wall_time_of_step_solves_that_failed_is_reported() {
+    // the first two solves fail, after a pause each
     let pause = std::time::Duration::from_millis(20);
-    let mut solver = FailsFirst { newton: newton(), failures: 2, pause };
+    let mut failures = 2;
+    let refuses = |_: &dyn NonlinearProblem| {
+        let refuse = failures > 0;
+        if refuse {
+            failures -= 1;
+            std::thread::sleep(pause);
+        }
+        refuse
+    };
+    let mut solver = Refusing { newton: newton(), refuses };
     let mut p = Pair::new([1.0, 1.0], 1.0);
     let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
     let started = std::time::Instant::now();
@@ -291,35 +299,6 @@ fn the_wall_time_of_step_solves_that_failed_is_reported() {
     assert!(converged + failed <= wall, "{converged} + {failed} s in {wall} s");
 }
 
-/// Newton for the flow's steps until the static residual at a step's predicted state (|(u_0,
-/// 10 u_1)| on the linear pair) falls below `stall_below`; it fails every step after that, and
-/// every direct solve of the end: a flow whose steps stall near rest.
-struct StallsNearRest {
-    newton: NewtonSolver,
-    stall_below: f64,
-}
-
-impl NonlinearSolver for StallsNearRest {
-    fn solve(
-        &mut self,
-        problem: &mut dyn NonlinearProblem,
-        linear: &mut dyn LinearSolver,
-        t: f64,
-        scales: ReferenceScales,
-    ) -> std::result::Result<IncrementReport, IncrementFailure> {
-        let u = problem.free_values();
-        let static_residual = (u[0] * u[0] + 100.0 * u[1] * u[1]).sqrt();
-        if problem.integrator_step().is_none() || static_residual < self.stall_below {
-            return Err(IncrementFailure::Diverged { iterations: 10, residual: static_residual });
-        }
-        self.newton.solve(problem, linear, t, scales)
-    }
-
-    fn settings(&self) -> &NewtonSettings {
-        &self.newton.settings
-    }
-}
-
 /// A flow whose steps stall where its static residual is within [`STALLED_REST_FACTOR`] of the
 /// residual test (1e-12 here) ends at its last accepted state and says by how much; one that
 /// stalls farther from rest fails.
@@ -328,7 +307,14 @@ fn a_flow_that_stalls_near_rest_ends_there_and_one_that_stalls_farther_fails() {
     let flow = |stall_below: f64| {
         let mut p = Pair::new([1.0, 1.0], 0.0);
         let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
-        let mut solver = StallsNearRest { newton: newton(), stall_below };
+        // Newton for the flow's steps until the static residual at a step's predicted state
+        // (|(u_0, 10 u_1)| on the linear pair) falls below `stall_below`; every step after
+        // that fails, and every direct solve of the end: a flow whose steps stall near rest
+        let refuses = |problem: &dyn NonlinearProblem| {
+            let u = problem.free_values();
+            problem.integrator_step().is_none() || (u[0] * u[0] + 100.0 * u[1] * u[1]).sqrt() < stall_below
+        };
+        let mut solver = Refusing { newton: newton(), refuses };
         let scales = ReferenceScales::default();
         let result = damped_flow(&mut p, &[1.0, 1.0], &mut linear, &mut solver, scales, &tolerance(0.03), &mut |_| {});
         (result, p)
