@@ -78,4 +78,7 @@ pub struct IntegratorStep {
     pub correction_tolerance: f64,
     /// Iterations after which the solve is given up (the integrator then shortens the step).
     pub max_iterations: usize,
+    /// c in the step's iteration matrix K + c M (a damped flow's 1 / (beta h)): it changes
+    /// with the step's length, so a factor made for another c is a different matrix.
+    pub mass_coefficient: f64,
 }

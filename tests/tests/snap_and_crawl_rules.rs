@@ -2,13 +2,14 @@
 //! ([`CRAWL_COMMITS`] small commits in a row are passed by a snap one initial increment ahead,
 //! and a failure while still crawling snaps again at once) and the stuck rule
 //! ([`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row at the minimum increment are followed by one
-//! an initial increment ahead, or the run stops where that is no further).
+//! an initial increment ahead, or the run stops where that is no further), and the jump rule
+//! without continuation (an increment that converged far off the path is cut like a failed one).
 //!
 //! The folds are made on purpose: a linear cantilever solved by Newton, except that the
 //! nonlinear solver refuses every increment a given rule calls impassable (from the committed
-//! time to the target). Snaps settle by descent, which the refusal does not reach, so the
-//! driver's choices are the only thing under test, and each count below follows from the
-//! incrementation by hand.
+//! time to the target), or lands it off the path ([`Twist`]). Snaps settle by descent, which
+//! the twist does not reach, so the driver's choices are the only thing under test, and each
+//! count below follows from the incrementation by hand.
 
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
@@ -26,14 +27,26 @@ use stiction_tests::build_case;
 /// Which increments (committed time, target) load control cannot take.
 type Impassable = fn(f64, f64) -> bool;
 
-/// Newton, refusing the increments `impassable` names as diverged.
-struct FoldedPath {
-    newton: NewtonSolver,
-    committed: Rc<Cell<f64>>,
-    impassable: Impassable,
+/// What the mock Newton does to an increment (committed time, target) besides solving it.
+#[derive(Clone, Copy)]
+enum Twist {
+    /// Refuses the increments the rule calls impassable, as diverged.
+    Refuse(Impassable),
+    /// An increment from before [`FOLD`] to past it lands ten times as far as the path goes:
+    /// Newton's iterations carried the body onto another branch.
+    LandPastFold,
 }
 
-impl NonlinearSolver for FoldedPath {
+const FOLD: f64 = 0.45;
+
+/// Newton with a [`Twist`].
+struct TwistedNewton {
+    newton: NewtonSolver,
+    committed: Rc<Cell<f64>>,
+    twist: Twist,
+}
+
+impl NonlinearSolver for TwistedNewton {
     fn solve(
         &mut self,
         problem: &mut dyn NonlinearProblem,
@@ -41,10 +54,19 @@ impl NonlinearSolver for FoldedPath {
         t: f64,
         scales: ReferenceScales,
     ) -> Result<IncrementReport, IncrementFailure> {
-        if (self.impassable)(self.committed.get(), t) {
+        let from = self.committed.get();
+        if let Twist::Refuse(impassable) = self.twist
+            && impassable(from, t)
+        {
             return Err(IncrementFailure::Diverged { iterations: 1, residual: 1.0 });
         }
-        self.newton.solve(problem, linear, t, scales)
+        let report = self.newton.solve(problem, linear, t, scales)?;
+        if matches!(self.twist, Twist::LandPastFold) && from < FOLD && t > FOLD {
+            let du = problem.increment_since_commit();
+            problem.add_to_free(&du, 9.0);
+            problem.assemble(true)?;
+        }
+        Ok(report)
     }
 
     fn settings(&self) -> &NewtonSettings {
@@ -52,10 +74,12 @@ impl NonlinearSolver for FoldedPath {
     }
 }
 
-/// Records the committed times (shared with [`FoldedPath`]) and the driver's messages.
+/// Records the committed times (shared with the solver) and displacement norms, and the
+/// driver's messages.
 struct Recorder {
     committed: Rc<Cell<f64>>,
     times: Rc<RefCell<Vec<f64>>>,
+    norms: Rc<RefCell<Vec<f64>>>,
     messages: Rc<RefCell<Vec<String>>>,
 }
 
@@ -63,6 +87,7 @@ impl Observer for Recorder {
     fn committed(&mut self, model: &Model, _increment: &CommittedIncrement) -> stiction_core::error::Result<()> {
         self.committed.set(model.time);
         self.times.borrow_mut().push(model.time);
+        self.norms.borrow_mut().push(model.displacement.iter().map(|u| u * u).sum::<f64>().sqrt());
         Ok(())
     }
 
@@ -74,8 +99,9 @@ impl Observer for Recorder {
 /// What a run on the folded path did.
 struct Run {
     summary: RunSummary,
-    /// Committed times, the initial state's 0 first.
+    /// Committed times, the initial state's 0 first, and the displacement norms there.
     times: Vec<f64>,
+    norms: Vec<f64>,
     messages: Vec<String>,
 }
 
@@ -88,11 +114,23 @@ impl Run {
 /// Runs the cantilever (coarse, linear elastic) from t = 0 to 1 with `incrementation`, load
 /// control refusing what `impassable` names.
 fn run_on_folded_path(incrementation: Incrementation, impassable: Impassable) -> Run {
+    run_on_path(incrementation, Twist::Refuse(impassable))
+}
+
+/// Runs the cantilever (coarse, linear elastic) from t = 0 to 1 with `incrementation`, solved
+/// by Newton with `twist`.
+fn run_on_path(incrementation: Incrementation, twist: Twist) -> Run {
     let (_, mut built) = build_case("cases/validation/cantilever.toml", &["mesh.parameters.h=1.0"]);
     let committed = Rc::new(Cell::new(0.0));
     let times = Rc::new(RefCell::new(Vec::new()));
+    let norms = Rc::new(RefCell::new(Vec::new()));
     let messages = Rc::new(RefCell::new(Vec::new()));
-    let recorder = Recorder { committed: committed.clone(), times: times.clone(), messages: messages.clone() };
+    let recorder = Recorder {
+        committed: committed.clone(),
+        times: times.clone(),
+        norms: norms.clone(),
+        messages: messages.clone(),
+    };
     let mut observers: Vec<Box<dyn Observer>> = vec![Box::new(recorder)];
     let plan = RunPlan {
         name: "folded path".into(),
@@ -114,10 +152,10 @@ fn run_on_folded_path(incrementation: Incrementation, impassable: Impassable) ->
     };
     let model = &mut built.model;
     let mut linear = FaerCholesky::analyse_with(model.pattern(), Ordering::Amd).unwrap();
-    let mut nonlinear = FoldedPath { newton: NewtonSolver { settings: built.newton.clone() }, committed, impassable };
+    let mut nonlinear = TwistedNewton { newton: NewtonSolver { settings: built.newton.clone() }, committed, twist };
     let summary = run_steps(model, &plan, &mut linear, &mut nonlinear, &mut observers).unwrap();
-    let (times, messages) = (times.borrow().clone(), messages.borrow().clone());
-    Run { summary, times, messages }
+    let (times, norms, messages) = (times.borrow().clone(), norms.borrow().clone(), messages.borrow().clone());
+    Run { summary, times, norms, messages }
 }
 
 /// Steps of 1/8 exactly (binary fractions: the committed times are exact).
@@ -186,5 +224,23 @@ fn a_crawl_towards_a_fold_is_passed_by_snaps_one_initial_increment_ahead() {
     assert_eq!(run.count("still crawling at t ="), 1);
     assert!((run.times[crawl + 2] - (after + 0.2)).abs() < 1e-12, "{:?}", &run.times[crawl..]);
     assert_eq!(run.summary.snaps, 2);
+    assert_eq!(run.times.last(), Some(&1.0));
+}
+
+/// Without continuation, a load-controlled increment that converges far off the path (ten
+/// times what the last increment's rate predicts: Newton's iterations carried the body onto
+/// another branch past a fold) is not committed: it is cut like one that failed, and the fold
+/// is crossed by a snap. On the linear cantilever every committed state then lies on the path,
+/// |u| proportional to t, where the jumped increment would be ten times off it.
+#[test]
+fn an_increment_that_lands_on_another_branch_is_cut_and_the_fold_crossed_by_a_snap() {
+    let run = run_on_path(eighths(1e-3), Twist::LandPastFold);
+    assert_eq!(run.summary.status, "completed", "{:?}", run.summary.message);
+    assert!(run.count("jumped to another branch (moved too far)") >= 1, "{:?}", run.messages);
+    assert!(run.summary.snaps >= 1 && run.times.iter().any(|&t| t > FOLD));
+    let per_unit_time = run.norms.last().unwrap() / run.times.last().unwrap();
+    for (t, norm) in run.times.iter().zip(&run.norms) {
+        assert!((norm - t * per_unit_time).abs() <= 1e-9 * per_unit_time, "|u| = {norm} at t = {t}");
+    }
     assert_eq!(run.times.last(), Some(&1.0));
 }

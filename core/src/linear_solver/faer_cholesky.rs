@@ -126,6 +126,7 @@ pub struct FaerCholesky {
     factor: Factor,
     workspace: MemBuffer,
     par: Par,
+    factorizations: u64,
 }
 
 /// Refinement stops at this relative residual, or after this many corrections.
@@ -170,7 +171,7 @@ impl FaerCholesky {
                 fallbacks: 0,
             },
         };
-        Ok(Self { symbolic, factor, workspace, par })
+        Ok(Self { symbolic, factor, workspace, par, factorizations: 0 })
     }
 
     /// Solves A X = B in place for the `n_rhs` columns of `rhs` (column major, one after the
@@ -261,10 +262,15 @@ impl LinearSolver for FaerCholesky {
         }
     }
 
+    fn factorizations(&self) -> u64 {
+        self.factorizations
+    }
+
     fn factorize(&mut self, pattern: &SparsityPattern, values: &[f64]) -> Result<FactorKind> {
         if values.iter().any(|v| !v.is_finite()) {
             return Err(CoreError::NonFinite("tangent matrix".into()));
         }
+        self.factorizations += 1;
         let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
         match &mut self.factor {
             Factor::Double(numeric) => {

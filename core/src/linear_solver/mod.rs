@@ -41,6 +41,9 @@ pub trait LinearSolver {
     }
     /// Stored entries of the factor (memory and cost measure).
     fn factor_nnz(&self) -> usize;
+    /// Numeric factorizations begun so far: it names the factor held, so a caller that reuses
+    /// a factor of its own can tell whether someone else has replaced it since.
+    fn factorizations(&self) -> u64;
     /// Matrices a reduced-precision solver had to refactor in double precision because its
     /// refinement did not converge on them (0 for a solver without reduced precision).
     fn precision_fallbacks(&self) -> usize {

@@ -28,6 +28,12 @@
 //! and the next h is h * 0.9 (tolerance move / error)^(1/(order + 1)), within [h/5, 2h] (BDF2
 //! is zero-stable for step ratios below 1 + sqrt 2). The first h is the one the second
 //! derivative at the start, a_0 = -M^{-1} K v_0, allows: h_0 = 2 tolerance ||v_0|| / ||a_0||.
+//! Kinks: where the velocity itself jumps (an interface law whose force jumps, as a hysteretic
+//! branch switch does, or a stiff component relaxing from the last step's inexact solve once a
+//! short step resolves it), the error is h times the jump, proportional to the move, and no
+//! step passes the test; a step redone at most half as long whose error ratio has not even
+//! halved ([`Redone::is_kink`]; a smooth flow's falls as h^order) is accepted, and the flow
+//! restarts from it by backward Euler at the same length.
 //!
 //! End: when a step's static residual r(u_{n+1}) = -M v_{n+1} passes the solver's residual test,
 //! or when the move still to come, estimated from the velocity's decay ratio
@@ -100,6 +106,9 @@ pub struct FlowReport {
     pub commits: usize,
     /// Steps redone shorter (too inaccurate, or not converged).
     pub rejected: usize,
+    /// Steps accepted across a kink in the velocity (see [`Redone::is_kink`]): their error
+    /// did not fall with their length; the flow restarted from each by backward Euler.
+    pub kinks: usize,
     /// Wall seconds of the solves that did not converge (steps redone shorter, direct end
     /// solves that failed); none of their costs are in `costs`.
     pub failed_solve_seconds: f64,
@@ -191,6 +200,7 @@ impl NonlinearProblem for DampedStep<'_> {
         Some(IntegratorStep {
             correction_tolerance: self.correction_tolerance,
             max_iterations: MAX_ITERATIONS_PER_STEP,
+            mass_coefficient: self.inverse_h,
         })
     }
     fn residual(&self) -> &[f64] {
@@ -257,6 +267,26 @@ fn step_factor(tolerance: f64, moved: f64, error: f64, order: i32, cap: f64) -> 
     if error > 0.0 { (0.9 * (tolerance * moved / error).powf(exponent)).clamp(0.2, cap) } else { cap }
 }
 
+/// A step redone shorter because its local error exceeded twice the tolerance: its length and
+/// its error over the tolerance, error / (tolerance x move).
+#[derive(Debug, Clone, Copy)]
+struct Redone {
+    h: f64,
+    ratio: f64,
+}
+
+impl Redone {
+    /// Whether the step of length `h` with error ratio `ratio` that follows this one shows a
+    /// kink in the flow's velocity: at most half as long, and its error ratio has not even
+    /// halved. A smooth flow's ratio falls as h^order (for BDF2 at least fourfold when h halves);
+    /// across a jump in the velocity (a force that jumps, or a stiff component relaxing from the
+    /// last step's inexact solve) the error is the jump itself, h |v_after - v_before|,
+    /// proportional to the move, and no shorter step passes the test.
+    fn is_kink(&self, h: f64, ratio: f64) -> bool {
+        h <= 0.5 * self.h && ratio > 0.5 * self.ratio
+    }
+}
+
 /// The last accepted step: where it started, the velocity there, and its length.
 struct PreviousStep {
     u: Vec<f64>,
@@ -315,16 +345,18 @@ fn end_stalled_near_rest(
     mut flow: FlowReport,
 ) -> Option<FlowReport> {
     problem.set_free_values(u_n);
-    let ratio = match problem.assemble(true) {
-        Ok(()) => norm(problem.residual()) / (newton.tol_residual * newton.force_scale(problem.force_norm(), scales)),
-        Err(_) => f64::NAN,
-    };
-    if ratio.is_nan() || ratio > STALLED_REST_FACTOR {
-        problem.rollback();
-        return None;
+    let test = |p: &dyn NonlinearProblem| newton.tol_residual * newton.force_scale(p.force_norm(), scales);
+    let ratio = problem.assemble(true).ok().map(|()| norm(problem.residual()) / test(problem));
+    match ratio {
+        Some(ratio) if ratio <= STALLED_REST_FACTOR => {
+            flow.stalled_at_residual_ratio = Some(ratio);
+            Some(flow)
+        }
+        _ => {
+            problem.rollback();
+            None
+        }
     }
-    flow.stalled_at_residual_ratio = Some(ratio);
-    Some(flow)
 }
 
 /// Follows the flow at the problem's current time from its trial state (the committed one) to
@@ -369,6 +401,8 @@ pub fn damped_flow(
     let mut commit_bar = resolution;
     let mut previous: Option<PreviousStep> = None;
     let mut cuts_in_a_row = 0;
+    // the step last redone shorter for its error
+    let mut redone: Option<Redone> = None;
     // the end is tried directly when the move to come is below this too (halved after a miss)
     let mut tail_bar = f64::INFINITY;
     while flow.steps < settings.max_steps {
@@ -380,6 +414,7 @@ pub fn damped_flow(
             flow.failed_solve_seconds += solving.elapsed().as_secs_f64();
             problem.rollback();
             flow.rejected += 1;
+            redone = None;
             cuts_in_a_row += 1;
             if cuts_in_a_row > MAX_CUTS_IN_A_ROW {
                 return end_stalled_near_rest(problem, &u_n, &newton, scales, flow).ok_or(e);
@@ -391,12 +426,16 @@ pub fn damped_flow(
         let v_new: Vec<f64> = u.iter().zip(&formula.start).map(|(a, b)| (a - b) / (formula.beta * h)).collect();
         let moved = distance_inf(&u, &u_n);
         let error = formula.error(&u, &v_new, &v, h);
-        if error > 2.0 * tol * moved {
+        let ratio = error / (tol * moved);
+        let kink = redone.is_some_and(|r: Redone| r.is_kink(h, ratio));
+        if error > 2.0 * tol * moved && !kink {
             problem.rollback();
             flow.rejected += 1;
+            redone = Some(Redone { h, ratio });
             h *= step_factor(tol, moved, error, formula.order, 0.9);
             continue;
         }
+        redone = None;
         cuts_in_a_row = 0;
         if distance_inf(&u, &committed) >= commit_bar {
             problem.commit();
@@ -407,9 +446,16 @@ pub fn damped_flow(
         progress(&flow);
         let decay = norm(&v_new) / norm(&v);
         let (u_prev, v_prev) = (std::mem::replace(&mut u_n, u), std::mem::replace(&mut v, v_new));
-        previous = Some(PreviousStep { u: u_prev, v: v_prev, h });
-        // BDF2 stays zero-stable for step ratios below 1 + sqrt 2
-        h *= step_factor(tol, moved, error, formula.order, 2.0);
+        if kink {
+            // across the kink the velocity is not smooth: BDF2's history would carry the jump
+            // into the next steps; the flow restarts by backward Euler at the same length
+            flow.kinks += 1;
+            previous = None;
+        } else {
+            previous = Some(PreviousStep { u: u_prev, v: v_prev, h });
+            // BDF2 stays zero-stable for step ratios below 1 + sqrt 2
+            h *= step_factor(tol, moved, error, formula.order, 2.0);
+        }
         // the wrapped problem's residual at the accepted state is the static one, r(u_n)
         committed_residual = norm(problem.residual());
         if at_rest(problem) {

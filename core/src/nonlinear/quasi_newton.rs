@@ -12,7 +12,14 @@
 //! - when the iterations left at the observed rate would cost more than a refactorization
 //!   (on a factor made in the last increment, judged once the steps use two BFGS pairs; see
 //!   [`super::refactorization_costs`]);
-//! - at every iteration while the tangent is indefinite (an LDL^T factor: softening).
+//! - at every iteration while the tangent is indefinite (an LDL^T factor: softening);
+//! - when the linear solver's factor is not the one this solver made (another method, a damped
+//!   flow's mass or a settle's shifted tangent, factorized since), or was made for another
+//!   matrix: a time integrator's step iterates on K + c M ([`IntegratorStep::mass_coefficient`]),
+//!   and a factor made for a c more than [`MASS_COEFFICIENT_CHANGE`] away, or for K alone, is
+//!   rebuilt (CVODE's rule for its Newton matrix, Hindmarsh et al. 2005): on a factor of a far
+//!   shorter step, whose drag c M dominates, the corrections come out too small by the ratio of
+//!   the c's, and a step would count as converged on its correction test while far from solved.
 //!
 //! So a hard increment degrades to full Newton, never to a crawl; and an increment the
 //! quasi-Newton iterations cannot converge is solved again by full Newton before it counts as
@@ -33,7 +40,7 @@ use super::tangent_predictor::{PredictorFactor, predict_along_tangent};
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
 use crate::error::Result;
 use crate::linear_solver::{FactorKind, LinearSolver};
-use crate::problem::NonlinearProblem;
+use crate::problem::{IntegratorStep, NonlinearProblem};
 use crate::vector::{dot, norm};
 use std::time::Instant;
 
@@ -43,8 +50,8 @@ pub struct QuasiNewtonSolver {
     pub settings: NewtonSettings,
     /// Refactorize when an iteration leaves more than this fraction of the residual.
     pub slow_ratio: f64,
-    /// Whether the linear solver holds a usable factor of a recent tangent.
-    factor_ready: bool,
+    /// The factor this solver made last, while the linear solver holds it and it is usable.
+    factor: Option<OwnFactor>,
     /// The last tangent was not positive definite (softening): BFGS's curvature condition
     /// fails there, so the iterations refactorize every time (full Newton) until it is again.
     indefinite: bool,
@@ -60,7 +67,7 @@ impl QuasiNewtonSolver {
         Self {
             settings,
             slow_ratio: 0.9,
-            factor_ready: false,
+            factor: None,
             indefinite: false,
             newton: NewtonStretch::default(),
             increments_on_factor: 0,
@@ -73,6 +80,36 @@ impl QuasiNewtonSolver {
     /// instead of measured times: reproducible to the last digit for a given thread count.
     pub fn with_cost_ratio(settings: NewtonSettings, ratio: f64) -> Self {
         Self { costs: Costs::with_fixed_ratio(ratio), ..Self::new(settings) }
+    }
+}
+
+/// A factor's relative change of the mass coefficient c beyond which a time integrator's step
+/// rebuilds its iteration matrix K + c M (CVODE's `dgmax`, 0.3).
+pub const MASS_COEFFICIENT_CHANGE: f64 = 0.3;
+
+/// Which factor the solver made: the linear solver's count of factorizations right after it
+/// (so a later factorization by anyone else shows), and the mass coefficient c of the matrix
+/// K + c M it factorized (None: K, the tangent of an equilibrium solve).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct OwnFactor {
+    identity: u64,
+    mass_coefficient: Option<f64>,
+}
+
+impl OwnFactor {
+    fn made(linear: &dyn LinearSolver, step: Option<IntegratorStep>) -> Self {
+        Self { identity: linear.factorizations(), mass_coefficient: step.map(|s| s.mass_coefficient) }
+    }
+
+    /// Whether the linear solver still holds this factor and it serves a solve of `step`'s
+    /// matrix: the same kind (K, or K + c M), with c within [`MASS_COEFFICIENT_CHANGE`].
+    fn serves(&self, linear: &dyn LinearSolver, step: Option<IntegratorStep>) -> bool {
+        let same_matrix = match (self.mass_coefficient, step.map(|s| s.mass_coefficient)) {
+            (None, None) => true,
+            (Some(made), Some(wanted)) => (wanted / made - 1.0).abs() <= MASS_COEFFICIENT_CHANGE,
+            _ => false,
+        };
+        same_matrix && self.identity == linear.factorizations()
     }
 }
 
@@ -138,12 +175,12 @@ impl NonlinearSolver for QuasiNewtonSolver {
         rate_step: f64,
         report: &mut IncrementReport,
     ) -> Result<()> {
-        let reuse = self.factor_ready && self.newton.left == 0;
+        let reuse = self.factor.is_some_and(|f| f.serves(linear, None)) && self.newton.left == 0;
         let factor = if reuse { PredictorFactor::Reuse } else { PredictorFactor::Fresh };
         if let Some(made) = predict_along_tangent(problem, linear, times, rate_step, factor, report)? {
             self.indefinite = made.kind == FactorKind::Ldlt;
             self.costs.refactorized(made.seconds);
-            self.factor_ready = true;
+            self.factor = Some(OwnFactor::made(linear, None));
             self.increments_on_factor = 0;
         }
         Ok(())
@@ -175,6 +212,10 @@ impl NonlinearSolver for QuasiNewtonSolver {
                 problem.rollback();
                 let newton = super::newton::solve_increment(problem, linear, t, &self.settings, scales);
                 self.newton_solved(newton.is_ok());
+                if newton.is_ok() {
+                    // Newton's last factor, of a tangent next to the converged state, serves on
+                    self.factor = Some(OwnFactor::made(linear, problem.integrator_step()));
+                }
                 newton.map(|mut newton| {
                     newton.add_costs(&IncrementReport { iterations, ..report });
                     newton
@@ -183,7 +224,9 @@ impl NonlinearSolver for QuasiNewtonSolver {
             Err(e) => Err(e),
         };
         // a failed increment may have left a factor of a state far from the next attempt's
-        self.factor_ready = result.is_ok();
+        if result.is_err() {
+            self.factor = None;
+        }
         result
     }
 }
@@ -220,7 +263,7 @@ impl QuasiNewtonSolver {
     /// iterations, when they take over again, start from a factor of their own (whose kind,
     /// LL^T or LDL^T, they then know).
     fn newton_solved(&mut self, converged: bool) {
-        self.factor_ready = false;
+        self.factor = None;
         self.newton.newton_solved(converged);
     }
 
@@ -241,7 +284,7 @@ impl QuasiNewtonSolver {
         report.factorization_seconds += factor_timer.elapsed().as_secs_f64();
         report.factorizations += 1;
         self.costs.refactorized(timer.elapsed().as_secs_f64());
-        self.factor_ready = true;
+        self.factor = Some(OwnFactor::made(linear, problem.integrator_step()));
         self.increments_on_factor = 0;
         Ok(())
     }
@@ -258,7 +301,7 @@ impl QuasiNewtonSolver {
         let start_u: Vec<f64> = problem.solution().to_vec();
         problem.set_time(t);
         let timer = Instant::now();
-        let with_tangent = !self.factor_ready;
+        let with_tangent = !self.factor.is_some_and(|f| f.serves(linear, problem.integrator_step()));
         problem.assemble(with_tangent)?;
         report.assembly_seconds += timer.elapsed().as_secs_f64();
         if with_tangent {

@@ -270,18 +270,51 @@ fn an_integrator_step_is_solved_to_its_own_tolerance_and_given_up_at_its_own_lim
         let (exact, u) = solve(None, quasi);
         let exact = exact.unwrap();
         assert!((u - 1.0).abs() < 1e-12, "{u}");
-        let loose = IntegratorStep { correction_tolerance: 1e-3, max_iterations: 25 };
+        let loose = IntegratorStep { correction_tolerance: 1e-3, max_iterations: 25, mass_coefficient: 0.0 };
         let (inexact, u) = solve(Some(loose), quasi);
         let inexact = inexact.unwrap();
         assert!((u - 1.0).abs() < 1e-3, "quasi-Newton {quasi}: {u}");
         assert!(inexact.iterations < exact.iterations, "{} vs {}", inexact.iterations, exact.iterations);
-        let short = IntegratorStep { correction_tolerance: 0.0, max_iterations: 2 };
+        let short = IntegratorStep { correction_tolerance: 0.0, max_iterations: 2, mass_coefficient: 0.0 };
         match solve(Some(short), quasi).0 {
             // the quasi-Newton solver tries the step once more by Newton, within the same limit
             Err(IncrementFailure::Diverged { iterations, .. }) => assert_eq!(iterations, 2),
             other => panic!("quasi-Newton {quasi}: {other:?}"),
         }
     }
+}
+
+/// r = 2 (u - 1): one Newton step from anywhere, on the right factor.
+fn linear_with_root_one(u: f64, _t: f64) -> (f64, f64) {
+    (2.0 * (u - 1.0), 2.0)
+}
+
+/// The quasi-Newton solver reuses its factor only for the matrix it factorized, while the
+/// linear solver still holds it: a time integrator's step with a mass coefficient within 30% of
+/// the factor's is solved on it (no factorization), one 100% away, an equilibrium solve after
+/// the integrator's, and any solve after someone else factorized are solved on a new factor.
+#[test]
+fn the_quasi_newton_solver_rebuilds_a_factor_made_for_another_matrix_or_replaced() {
+    use super::{NonlinearSolver, QuasiNewtonSolver};
+    let mut p = OneDof::new(linear_with_root_one);
+    let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+    let mut solver = QuasiNewtonSolver::new(settings());
+    let step = |c: f64| Some(IntegratorStep { correction_tolerance: 1e-3, max_iterations: 10, mass_coefficient: c });
+    let mut factorizations = |p: &mut OneDof, linear: &mut FaerCholesky, integrator_step| {
+        p.integrator_step = integrator_step;
+        p.set_free_values(&[3.0]);
+        p.commit();
+        let report = solver.solve(p, linear, 0.0, ReferenceScales::default()).unwrap();
+        assert!((p.u - 1.0).abs() < 1e-12, "{}", p.u);
+        report.factorizations
+    };
+    assert_eq!(factorizations(&mut p, &mut linear, step(1.0)), 1, "the first solve factorizes");
+    assert_eq!(factorizations(&mut p, &mut linear, step(1.25)), 0, "c moved 25%: the factor serves");
+    assert_eq!(factorizations(&mut p, &mut linear, step(2.5)), 1, "c moved 100%");
+    linear.factorize(&p.pattern, &[7.0]).unwrap();
+    assert_eq!(factorizations(&mut p, &mut linear, step(2.5)), 1, "the factor was replaced");
+    assert_eq!(factorizations(&mut p, &mut linear, None), 1, "K alone after K + c M");
+    assert_eq!(factorizations(&mut p, &mut linear, None), 0, "K again");
 }
 
 /// r = sin u + 1/2: stable equilibria at -pi/6 + 2 pi n, unstable ones at 7 pi/6 + 2 pi n.

@@ -7,7 +7,9 @@
 //! when a converged load-controlled increment moved more than [`JUMP_RATIO`] times what the
 //! last increment's rate predicts, or turned back against it while the load did not reverse (a
 //! silent jump to another branch, or a peak stepped over inside the increment); it hands back once t moves
-//! forward past the target that failed, or when it cannot go on inside its step window.
+//! forward past the target that failed, or when it cannot go on inside its step window. Without
+//! continuation such a jump counts as a failed attempt and is cut like one: the fold is then
+//! crossed by a snap (below), not where Newton's iterations happened to land.
 //!
 //! Snaps: when neither control can go on (load control cut below its minimum increment, arc
 //! length stalled or unable to start, e.g. a run that starts inside the jump-in range), the
@@ -595,6 +597,9 @@ impl Driver<'_> {
         match damped_flow(self.model, mass, &mut *self.linear, &mut *self.nonlinear, scales, &flow, &mut progress) {
             Ok(f) => {
                 let mut text = format!("{} damped flow steps, {} redone", f.steps, f.rejected);
+                if f.kinks > 0 {
+                    text += &format!(", {} across kinks", f.kinks);
+                }
                 if let Some(ratio) = f.stalled_at_residual_ratio {
                     text += &format!("; its steps stalled near rest, ended at {ratio:.1} times the residual test");
                     self.stalled_snaps.0 += 1;
@@ -606,37 +611,53 @@ impl Driver<'_> {
         }
     }
 
-    /// Whether a converged load-controlled increment to `target` jumped to another branch:
-    /// its displacements moved more than JUMP_RATIO times what the last increment's rate
-    /// predicts, or they turned back against it (du . du_previous < 0) although the load did
-    /// not reverse (the increment started on no breakpoint): a limit point passed inside one
-    /// increment, after which the body relaxes onto another branch. If so, the increment is
-    /// rolled back and the crossing (arc length or dissipation control) starts.
-    fn jumped(&mut self, target: f64, du: &[f64]) -> bool {
-        let Some(continuation) = self.plan.continuation.filter(|_| !self.arc_blocked) else {
-            return false;
-        };
-        let Some(previous) = self.last_converged.clone().filter(|p| p.dt > 0.0 && target > self.t) else {
-            return false;
-        };
+    /// Whether a converged load-controlled increment to `target` jumped to another branch, and
+    /// how: its displacements moved more than [`JUMP_RATIO`] times what the last increment's
+    /// rate predicts ("moved too far"), or they turned back against it (du . du_previous < 0)
+    /// although the load did not reverse (the increment started on no breakpoint; "turned
+    /// back"): a limit point passed inside one increment, after which Newton's iterations
+    /// carried the body onto another branch. Without continuation only the first counts, and
+    /// not for an increment that starts on a breakpoint (where the load's rate may change): a
+    /// body's motion also turns back on a smooth path (where an adhesive pull gives way to
+    /// contact pressure), and a snap is costlier than the crossing's step.
+    fn jump(&self, target: f64, du: &[f64]) -> Option<&'static str> {
+        // arc length had to hand back to load control: load control goes on
+        if self.plan.continuation.is_some() && self.arc_blocked {
+            return None;
+        }
+        let previous = self.last_converged.as_ref().filter(|p| p.dt > 0.0 && target > self.t)?;
         let (moved, moved_before) = (norm(du), norm(&previous.du));
         let predicted = moved_before * (target - self.t) / previous.dt;
         // round-off in a state that no longer moves (a separated body) is no jump
         let noise = self.nonlinear.settings().tol_displacement * self.largest_displacement;
-        let too_far = predicted > 0.0 && moved > JUMP_RATIO * predicted;
-        let turned_back = moved_before > noise && dot(du, &previous.du) < 0.0 && !self.at_breakpoint(self.t);
+        let continuation = self.plan.continuation.is_some();
+        let too_far =
+            (continuation || !self.at_breakpoint(self.t)) && predicted > 0.0 && moved > JUMP_RATIO * predicted;
+        let turned_back =
+            continuation && moved_before > noise && dot(du, &previous.du) < 0.0 && !self.at_breakpoint(self.t);
         if !(moved > noise && (too_far || turned_back)) {
-            return false;
+            return None;
         }
+        Some(if too_far { "moved too far" } else { "turned back" })
+    }
+
+    /// After a jump (see [`Self::jump`]) to `target`: the increment is rolled back, and the
+    /// crossing (arc length or dissipation control) starts when continuation is on; without
+    /// it the increment counts as failed and is cut, as load control does at a limit point it
+    /// cannot converge past (down to the minimum increment, then a snap: the state the
+    /// displacement-controlled body moves to on its own, where Newton's iterations chose one).
+    fn after_jump(&mut self, si: usize, target: f64, why: &'static str) -> Result<Flow> {
+        let Some(continuation) = self.plan.continuation else {
+            return self.failed(si, &IncrementFailure::Jumped { why });
+        };
         self.model.rollback();
         self.summary.cut_increments += 1;
         self.cuts_since_commit += 1;
-        self.crossing = continuation.start(previous, target);
-        let why = if too_far { "moved too far" } else { "turned back" };
+        self.crossing = self.last_converged.clone().and_then(|previous| continuation.start(previous, target));
         let next = if self.crossing.is_some() { "crossing the limit point" } else { "load control goes on" };
         let text = format!("the increment to t = {target:.6} jumped ({why}): rolled back, {next}");
         self.observers.iter_mut().for_each(|o| o.message(&text));
-        true
+        Ok(Flow::Continue)
     }
 
     /// Whether time `t` is an amplitude breakpoint or a step end (where the load may reverse).
@@ -657,8 +678,10 @@ impl Driver<'_> {
             self.summary.limit_points += usize::from(limit_point);
         }
         let du = self.model.increment_since_commit();
-        if via == Via::LoadControl && self.jumped(target, &du) {
-            return Ok(Flow::Continue);
+        if via == Via::LoadControl
+            && let Some(why) = self.jump(target, &du)
+        {
+            return self.after_jump(si, target, why);
         }
         self.force_sum.0 += NonlinearProblem::force_norm(&*self.model);
         self.force_sum.1 += 1;
