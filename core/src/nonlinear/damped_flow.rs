@@ -359,6 +359,34 @@ fn end_stalled_near_rest(
     }
 }
 
+/// Tries the flow's end directly from its accepted state `u_n`: solves r(u) = 0 at the
+/// problem's time with the run's solver, and ends the flow when that end lies within twice the
+/// `negligible` move of `u_n` (the problem then holds it as its trial state). A failed or too
+/// long solve is a miss: the problem is rolled back to the last committed step, and the flow
+/// goes on. The solve's costs go to `flow`.
+fn end_directly(
+    problem: &mut dyn NonlinearProblem,
+    solver: &mut dyn NonlinearSolver,
+    linear: &mut dyn LinearSolver,
+    scales: ReferenceScales,
+    u_n: &[f64],
+    negligible: f64,
+    flow: &mut FlowReport,
+) -> bool {
+    let (t, solving) = (problem.time(), Instant::now());
+    match solver.solve(problem, linear, t, scales) {
+        Ok(report) => {
+            flow.costs.add_costs(&report);
+            if distance_inf(&problem.free_values(), u_n) <= 2.0 * negligible {
+                return true;
+            }
+        }
+        Err(_) => flow.failed_solve_seconds += solving.elapsed().as_secs_f64(),
+    }
+    problem.rollback();
+    false
+}
+
 /// Follows the flow at the problem's current time from its trial state (the committed one) to
 /// a stable equilibrium (see the module documentation); `mass` is [`NonlinearProblem::mass`].
 /// Accepted steps are committed (except those that moved too little, see the module
@@ -466,20 +494,9 @@ pub fn damped_flow(
         let negligible = (tol * so_far).max(resolution);
         commit_bar = negligible;
         if to_come < negligible && to_come < tail_bar {
-            // a failed or too long direct solve is a miss: the flow goes on
-            let solving = Instant::now();
-            match solver.solve(problem, linear, t, scales) {
-                Ok(report) => {
-                    flow.costs.add_costs(&report);
-                    let end = problem.free_values();
-                    let last = distance_inf(&end, &u_n);
-                    if last <= 2.0 * negligible {
-                        return Ok(flow);
-                    }
-                }
-                Err(_) => flow.failed_solve_seconds += solving.elapsed().as_secs_f64(),
+            if end_directly(problem, solver, linear, scales, &u_n, negligible, &mut flow) {
+                return Ok(flow);
             }
-            problem.rollback();
             tail_bar = 0.5 * to_come;
         }
     }
