@@ -43,6 +43,7 @@ pub fn newton_settings(case: &LoadedCase) -> NewtonSettings {
         tol_residual: s.tol_residual,
         tol_displacement: s.tol_displacement,
         line_search: s.line_search,
+        stagnation_iterations: s.stagnation_iterations,
         ..NewtonSettings::default()
     }
 }

@@ -372,6 +372,11 @@ pub struct SolverSpec {
     /// Backtracking line search (default true).
     #[serde(default = "default_line_search")]
     pub line_search: bool,
+    /// An increment whose residual fell by less than 5% over its last 3 iterations is abandoned
+    /// (and cut) from this iteration on, instead of running to `max_iterations` (default 8;
+    /// 0: never).
+    #[serde(default = "default_stagnation_iterations")]
+    pub stagnation_iterations: usize,
     /// Assembly threads; 0 = all cores (default 0).
     #[serde(default)]
     pub threads: usize,
@@ -563,6 +568,9 @@ fn yes() -> bool {
 fn default_line_search() -> bool {
     NewtonSettings::default().line_search
 }
+fn default_stagnation_iterations() -> usize {
+    NewtonSettings::default().stagnation_iterations
+}
 fn default_cut() -> f64 {
     Incrementation::DEFAULT_CUT_FACTOR
 }
@@ -578,7 +586,7 @@ pub fn defaults_help() -> String {
          sections[].quadrature = \"standard\" (tet10: 4 points); boundary amplitude = \"ramp\" \
          (0 -> 1 over t in [0, 1]); steps[].initial_increment = step/10, min_increment = 1e-6 step, \
          max_increment = step, output_every = 1; solver.max_iterations = {}, tol_residual = {:e}, \
-         tol_displacement = {:e}, line_search = {}, threads = 0 (all cores), cut_factor = {}, \
+         tol_displacement = {:e}, line_search = {}, stagnation_iterations = {} (0: never), threads = 0 (all cores), cut_factor = {}, \
          growth_factor = {}, continuation = \"none\" (or \"arc-length\", \"dissipation\"), arc_length_after_cuts = {}, \
          method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"), \
          refactorization_cost_ratio = 0 (measured times), start_predictor = \"tangent\" (or \"none\"), \
@@ -591,6 +599,7 @@ pub fn defaults_help() -> String {
         n.tol_residual,
         n.tol_displacement,
         n.line_search,
+        n.stagnation_iterations,
         Incrementation::DEFAULT_CUT_FACTOR,
         Incrementation::DEFAULT_GROWTH_FACTOR,
         DEFAULT_ARC_LENGTH_AFTER_CUTS,

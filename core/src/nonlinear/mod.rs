@@ -23,6 +23,7 @@ pub use quasi_newton::QuasiNewtonSolver;
 use crate::error::CoreError;
 use crate::linear_solver::LinearSolver;
 use crate::problem::NonlinearProblem;
+use convergence::STAGNATION_WINDOW;
 
 /// What one converged increment took.
 #[derive(Debug, Clone, Default)]
@@ -42,6 +43,13 @@ pub enum IncrementFailure {
     Diverged {
         iterations: usize,
         residual: f64,
+    },
+    /// The residual stopped falling (see [`convergence`]'s module documentation): after
+    /// `iterations` it was `residual`, above 95% of what it was 3 iterations `earlier`.
+    Stagnated {
+        iterations: usize,
+        residual: f64,
+        earlier: f64,
     },
     /// An arc-length increment converged onto the path behind the committed state (the cosine
     /// of its angle with the previous increment, in the arc-length norm, is not positive).
@@ -71,6 +79,10 @@ impl std::fmt::Display for IncrementFailure {
             IncrementFailure::Diverged { iterations, residual } => {
                 write!(f, "no convergence after {iterations} iterations (residual {residual:.3e})")
             }
+            IncrementFailure::Stagnated { iterations, residual, earlier } => write!(
+                f,
+                "stagnated after {iterations} iterations (residual {residual:.3e}, {earlier:.3e} {STAGNATION_WINDOW} iterations before)"
+            ),
             IncrementFailure::TurnedBack { cosine } => {
                 write!(
                     f,

@@ -60,6 +60,9 @@ pub fn solve_increment(
             return Ok(report);
         }
         let r_norm = check.residual;
+        if let Some(stagnated) = check.stagnated {
+            return Err(stagnated);
+        }
         if iteration == max_iterations {
             break;
         }

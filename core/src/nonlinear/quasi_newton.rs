@@ -201,7 +201,7 @@ impl NonlinearSolver for QuasiNewtonSolver {
         let mut report = IncrementReport::default();
         let result = match self.iterate(problem, linear, t, scales, &mut report) {
             Ok(()) => Ok(report),
-            Err(IncrementFailure::Diverged { iterations, .. }) => {
+            Err(IncrementFailure::Diverged { iterations, .. } | IncrementFailure::Stagnated { iterations, .. }) => {
                 // not a crawl, not a cut: the same increment by full Newton from the committed
                 // state, and full Newton for the next increments (the path has become hard);
                 // the report counts both attempts. A time integrator's step that failed was
@@ -331,6 +331,9 @@ impl QuasiNewtonSolver {
                 return Ok(());
             }
             let (r_norm, force_scale) = (check.residual, check.force_scale);
+            if let Some(stagnated) = check.stagnated {
+                return Err(stagnated);
+            }
             if iteration == max_iterations {
                 break;
             }

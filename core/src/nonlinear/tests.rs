@@ -245,25 +245,28 @@ fn cubic_with_root_one(u: f64, _t: f64) -> (f64, f64) {
     (u * u * u + u - 2.0, 3.0 * u * u + 1.0)
 }
 
+/// The quasi-Newton solver (`quasi`) or full Newton with `settings`.
+fn solver(settings: NewtonSettings, quasi: bool) -> Box<dyn super::NonlinearSolver> {
+    if quasi {
+        Box::new(super::QuasiNewtonSolver::new(settings))
+    } else {
+        Box::new(super::newton::NewtonSolver { settings })
+    }
+}
+
 /// A time integrator's step is solved to its own correction tolerance (fewer iterations than
 /// equilibrium's 1e-12 test, and within the tolerance of the root) and given up at its own
 /// iteration limit, by Newton and by the quasi-Newton solver.
 #[test]
 fn an_integrator_step_is_solved_to_its_own_tolerance_and_given_up_at_its_own_limit() {
-    use super::newton::NewtonSolver;
-    use super::{IncrementFailure, NonlinearSolver, QuasiNewtonSolver};
+    use super::IncrementFailure;
     let solve = |step: Option<IntegratorStep>, quasi: bool| {
         let mut p = OneDof::new(cubic_with_root_one);
         p.integrator_step = step;
         p.set_free_values(&[3.0]);
         p.commit();
         let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
-        let mut solver: Box<dyn NonlinearSolver> = if quasi {
-            Box::new(QuasiNewtonSolver::new(settings()))
-        } else {
-            Box::new(NewtonSolver { settings: settings() })
-        };
-        let report = solver.solve(&mut p, &mut linear, 0.0, ReferenceScales::default());
+        let report = solver(settings(), quasi).solve(&mut p, &mut linear, 0.0, ReferenceScales::default());
         (report, p.u)
     };
     for quasi in [false, true] {
@@ -517,4 +520,53 @@ fn dissipation_control_follows_a_snap_back_and_each_increment_dissipates_what_it
     }
     // past the peak the end of the spring moves back while the bond opens
     assert!(states.len() >= 5 && states.windows(2).all(|w| w[1].0 > w[0].0 && w[1].1 < w[0].1), "{states:?}");
+}
+
+/// r = atan u + 2: no root; Newton's steps run off to u -> -inf, where ||r|| creeps down
+/// to 2 - pi/2 and never below.
+fn no_root(u: f64, _t: f64) -> (f64, f64) {
+    (u.atan() + 2.0, 1.0 / (1.0 + u * u))
+}
+
+/// r = u - 1 seen through a tangent twice too stiff: Newton converges linearly, ||r|| halving
+/// at each iteration.
+fn stiff_tangent(u: f64, _t: f64) -> (f64, f64) {
+    (u - 1.0, 2.0)
+}
+
+/// An increment whose residual has stopped falling is abandoned at the first iteration the
+/// stagnation test looks at (the 8th: ||r|| fell by less than 5% over the 3 before) by Newton
+/// and by the quasi-Newton solver, instead of at the iteration limit (as with the test switched
+/// off); one that converges slowly but steadily (||r|| halving each iteration, 40 iterations to
+/// 1e-12) is not.
+#[test]
+fn a_stagnating_increment_is_abandoned_and_a_slow_steady_one_is_not() {
+    use super::IncrementFailure;
+    let solve = |residual_of: fn(f64, f64) -> (f64, f64), settings: NewtonSettings, quasi: bool| {
+        let mut p = OneDof::new(residual_of);
+        let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+        solver(settings, quasi).solve(&mut p, &mut linear, 0.0, ReferenceScales::default())
+    };
+    for quasi in [false, true] {
+        match solve(no_root, settings(), quasi) {
+            Err(IncrementFailure::Stagnated { iterations, residual, earlier }) => {
+                assert_eq!(iterations, 8, "quasi-Newton {quasi}");
+                assert!(
+                    residual > 0.95 * earlier && residual >= 2.0 - std::f64::consts::FRAC_PI_2 - 1e-12,
+                    "{residual}"
+                );
+            }
+            other => panic!("quasi-Newton {quasi}: {other:?}"),
+        }
+        // switched off, the same iterations end only at the limit (here 8 too: a few
+        // iterations later the tangent, 1/(1 + u^2), underflows to zero)
+        let without = NewtonSettings { stagnation_iterations: 0, max_iterations: 8, ..settings() };
+        match solve(no_root, without, quasi) {
+            Err(IncrementFailure::Diverged { iterations, .. }) => assert_eq!(iterations, 8),
+            other => panic!("quasi-Newton {quasi}: {other:?}"),
+        }
+    }
+    let patient = NewtonSettings { max_iterations: 60, ..settings() };
+    let report = solve(stiff_tangent, patient, false).unwrap();
+    assert!((38..=42).contains(&report.iterations), "{} iterations", report.iterations);
 }

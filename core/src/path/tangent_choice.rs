@@ -66,7 +66,12 @@ impl TangentSwitch {
     }
 
     fn switch(&mut self, model: &mut Model, failure: &IncrementFailure) -> Option<String> {
-        let convergence = matches!(failure, IncrementFailure::Diverged { .. } | IncrementFailure::FlowUnsettled { .. });
+        let convergence = matches!(
+            failure,
+            IncrementFailure::Diverged { .. }
+                | IncrementFailure::Stagnated { .. }
+                | IncrementFailure::FlowUnsettled { .. }
+        );
         if self.choice != TangentChoice::SwitchOnFailure || !convergence || !model.flowing_where_stabilizable() {
             return None;
         }
