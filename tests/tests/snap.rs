@@ -7,7 +7,7 @@
 //! and the same most tensile force on the contact branch. The two ways to solve a snap, by
 //! descent (what "auto", the default, takes for this body) and along the damped flow, must
 //! land on the same state of this elastic body (one stable state in reach: its path does not
-//! matter).
+//! matter). A start out of equilibrium snaps at its first failed attempt, without cuts.
 
 use stiction_tests::run_case;
 
@@ -67,4 +67,15 @@ fn a_start_inside_the_jump_in_range_snaps_to_the_state_a_far_start_reaches() {
     // the snap is a jump of the force, recorded as an event
     let events = std::fs::read_to_string(near.output_directory.join("events.csv")).unwrap();
     assert!(events.lines().nth(1).is_some_and(|l| l.contains(",jump,")), "{events}");
+    // the near start is out of equilibrium: its first failed attempt snaps at once, with the
+    // reason, instead of being cut down to the minimum increment (which no shorter increment
+    // passes); the far start's first increments converge and are not affected
+    for s in [&near, &flowed] {
+        let log = std::fs::read_to_string(s.output_directory.join("messages.log")).unwrap();
+        let before_snap = log.split("snapping from t = 0.000000").next().unwrap();
+        assert!(before_snap.contains("the initial state is out of equilibrium"), "{log}");
+        assert!(!before_snap.contains("cut to dt"), "cut before the snap:\n{before_snap}");
+    }
+    let far_log = std::fs::read_to_string(far.output_directory.join("messages.log")).unwrap();
+    assert!(!far_log.contains("out of equilibrium"), "{far_log}");
 }

@@ -23,6 +23,14 @@
 //! step in between, the next snap goes one initial increment ahead too; where that is no further
 //! than the minimum increment, the run stops with the reason.
 //!
+//! An unbalanced start: the initial state is not solved, only assembled; where its residual
+//! fails the solver's residual test (an adhesive surface started inside its jump-in range pulls
+//! the body before any load is applied), the nearest equilibrium may lie across a snap, which no
+//! shorter increment reaches. The first attempt that fails to converge from such a start (its
+//! iterations diverged or stagnated; an interface law that fails on an iterate is cut as
+//! before) is not cut: the driver snaps at once from it (over the minimum increment, where
+//! cutting would have ended), and says that the start was out of equilibrium and by how much.
+//!
 //! Tangents: a failed attempt may switch the model between the materials' consistent and
 //! stabilized tangents for the attempts after it, and a failed snap is retried on the other
 //! tangent before the run stops ([`TangentSwitch`], `solver.tangent`).
@@ -188,6 +196,7 @@ pub fn run_steps(
         largest_displacement: 0.0,
         mass: None,
         stalled_snaps: (0, 0.0),
+        unbalanced_start: None,
         model,
         plan,
         linear,
@@ -291,6 +300,9 @@ struct Driver<'a> {
     stalled_snaps: (usize, f64),
     /// Which material tangent the solvers see, switched after failures.
     tangent: TangentSwitch,
+    /// Until the first commit: the initial state's residual norm and the solver's residual
+    /// test, when that fails (see the module documentation, "An unbalanced start").
+    unbalanced_start: Option<(f64, f64)>,
 }
 
 /// What to do after handling an attempt.
@@ -306,6 +318,7 @@ impl Driver<'_> {
     fn initial_state(&mut self) -> Result<()> {
         self.model.apply_time(0.0);
         self.model.assemble(false)?;
+        self.unbalanced_start = self.start_imbalance();
         self.model.commit();
         let initial = CommittedIncrement {
             step: 0,
@@ -322,6 +335,16 @@ impl Driver<'_> {
             o.committed(self.model, &initial)?;
         }
         Ok(())
+    }
+
+    /// The assembled initial state's residual norm ||r(u_0, 0)|| and the solver's residual test
+    /// tol_residual F, where the residual fails it.
+    fn start_imbalance(&self) -> Option<(f64, f64)> {
+        let settings = self.nonlinear.settings();
+        let residual = norm(NonlinearProblem::residual(&*self.model));
+        let force_scale = settings.force_scale(NonlinearProblem::force_norm(&*self.model), self.scales());
+        let test = settings.tol_residual * force_scale;
+        (!settings.residual_converged(residual, force_scale)).then_some((residual, test))
     }
 
     fn scales(&self) -> ReferenceScales {
@@ -420,6 +443,16 @@ impl Driver<'_> {
         if let Some(arc) = self.crossing.as_mut() {
             let cut = arc.cut(failure);
             return self.after_cut(si, cut, failure);
+        }
+        let no_convergence = matches!(failure, IncrementFailure::Diverged { .. } | IncrementFailure::Stagnated { .. });
+        if no_convergence && let Some((residual, test)) = self.unbalanced_start.take() {
+            let force = if self.plan.units.1.is_empty() { String::new() } else { format!(" {}", self.plan.units.1) };
+            let reason = format!(
+                "the initial state is out of equilibrium (residual {residual:.3e}{force} against the test's \
+                 {test:.3e}: e.g. an adhesive surface started inside its jump-in range), and the first increment \
+                 found no equilibrium near it ({failure})"
+            );
+            return self.snap(si, &reason);
         }
         let continuation = self.plan.continuation.filter(|c| self.cuts_since_commit >= c.after_cuts);
         if let Some(continuation) = continuation
@@ -707,6 +740,7 @@ impl Driver<'_> {
             self.load.set_increment(target - self.t);
         }
         self.model.commit();
+        self.unbalanced_start = None;
         self.tangent.committed();
         self.largest_displacement = self.largest_displacement.max(norm(&self.model.displacement));
         self.t = target;
