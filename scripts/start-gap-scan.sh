@@ -51,9 +51,11 @@ run_one() {
       smooth-lj-*) file=cases/validation/lj-sphere-3d.toml ;;
       smooth-cohesive-*) file=cases/validation/cohesive-sphere-3d.toml ;;
     esac
-    while IFS= read -r s; do model+=(--set "$s"); done < <(python3 -c \
-      'import sys, tomllib; print("\n".join(tomllib.load(open(sys.argv[1], "rb")).get("set", [])))' \
-      "cases/ru-sphere/$case.toml")
+    local sets
+    sets=$(python3 -c 'import sys, tomllib; print("\n".join(tomllib.load(open(sys.argv[1], "rb"))["set"]))' \
+      "cases/ru-sphere/$case.toml") \
+      || { echo "DIM=3d takes each case's key 'set' (w = 3 and 6; read with Python 3.11 or later): cases/ru-sphere/$case.toml has none" >&2; return 255; }
+    while IFS= read -r s; do model+=(--set "$s"); done <<< "$sets"
     model+=(--set "mesh.parameters.layer=$((2 * h))")
     [ "$body" = plastic ] && material=(--set 'materials.ru.model="j2-plasticity"' --set materials.ru.yield_stress=3.42)
   fi
