@@ -73,6 +73,15 @@ pub enum IncrementFailure {
     Error(CoreError),
 }
 
+impl IncrementFailure {
+    /// Whether the iterations of a fixed-time increment did not converge (they ran to the limit,
+    /// or the residual stopped falling), as opposed to a law or solver error, a jump or a
+    /// crossing's own failures.
+    pub fn is_no_convergence(&self) -> bool {
+        matches!(self, IncrementFailure::Diverged { .. } | IncrementFailure::Stagnated { .. })
+    }
+}
+
 impl std::fmt::Display for IncrementFailure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {

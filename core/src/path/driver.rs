@@ -444,8 +444,9 @@ impl Driver<'_> {
             let cut = arc.cut(failure);
             return self.after_cut(si, cut, failure);
         }
-        let no_convergence = matches!(failure, IncrementFailure::Diverged { .. } | IncrementFailure::Stagnated { .. });
-        if no_convergence && let Some((residual, test)) = self.unbalanced_start.take() {
+        if failure.is_no_convergence()
+            && let Some((residual, test)) = self.unbalanced_start.take()
+        {
             let force = if self.plan.units.1.is_empty() { String::new() } else { format!(" {}", self.plan.units.1) };
             let reason = format!(
                 "the initial state is out of equilibrium (residual {residual:.3e}{force} against the test's \

@@ -66,12 +66,7 @@ impl TangentSwitch {
     }
 
     fn switch(&mut self, model: &mut Model, failure: &IncrementFailure) -> Option<String> {
-        let convergence = matches!(
-            failure,
-            IncrementFailure::Diverged { .. }
-                | IncrementFailure::Stagnated { .. }
-                | IncrementFailure::FlowUnsettled { .. }
-        );
+        let convergence = failure.is_no_convergence() || matches!(failure, IncrementFailure::FlowUnsettled { .. });
         if self.choice != TangentChoice::SwitchOnFailure || !convergence || !model.flowing_where_stabilizable() {
             return None;
         }
