@@ -4,8 +4,8 @@
 
 use crate::build::{BuiltModel, build};
 use crate::case::{
-    ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec, SnapSpec, SolverSpec, StartPredictorSpec,
-    TangentSpec,
+    ContinuationSpec, LoadedCase, MethodSpec, OrderingSpec, PrecisionSpec, SnapDampingSpec, SnapSpec, SolverSpec,
+    StartPredictorSpec, TangentSpec,
 };
 use crate::error::{Result, StictionError};
 use std::path::PathBuf;
@@ -14,7 +14,7 @@ use std::sync::atomic::AtomicBool;
 use stiction_core::CoreError;
 use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
 use stiction_core::model::Model;
-use stiction_core::nonlinear::damped_flow::FlowSettings;
+use stiction_core::nonlinear::damped_flow::{FlowDamping, FlowSettings};
 use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
 use stiction_core::path::{
     Continuation, ContinuationMethod, RunPlan, SnapMethod, StartPredictor, TangentChoice, run_steps,
@@ -102,6 +102,10 @@ fn snap_method(solver: &SolverSpec, model: &Model) -> SnapMethod {
     let flow = SnapMethod::DampedFlow(FlowSettings {
         tolerance: solver.snap_tolerance,
         max_steps: solver.snap_max_steps,
+        damping: match solver.snap_damping {
+            SnapDampingSpec::Mass => FlowDamping::Mass,
+            SnapDampingSpec::Stiffness => FlowDamping::Stiffness,
+        },
         ..FlowSettings::default()
     });
     match solver.snap {

@@ -103,6 +103,37 @@ impl ElementSet {
         }
     }
 
+    /// Adds the set's initial stiffness K_0 = sum_e integral B^T D_0 B dV to `values` (on the
+    /// pattern): each cell's tangent at zero displacement from the material's initial state
+    /// (for an elastic-plastic law its elastic stiffness), whatever the set's current state.
+    fn add_initial_stiffness(&self, nodes: &[[f64; 3]], values: &mut [f64]) -> Result<()> {
+        let (nn, nd, nq, ns) =
+            (self.kernel.n_nodes(), self.kernel.n_dofs(), self.kernel.n_points(), self.material.n_state());
+        let mut coords = vec![[0.0; 3]; nn];
+        let zero = vec![0.0; nd];
+        let mut initial = vec![0.0; nq * ns];
+        if ns > 0 {
+            initial.chunks_mut(ns).for_each(|point| self.material.initialize_state(point));
+        }
+        let mut trial = initial.clone();
+        let (mut fe, mut ke, mut stress) = (vec![0.0; nd], vec![0.0; nd * nd], vec![[0.0; 6]; nq]);
+        for cell in 0..self.n_cells() {
+            for (a, &node) in self.cell(cell).iter().enumerate() {
+                coords[a] = nodes[node];
+            }
+            let buffers = ElementBuffers { force: &mut fe, stiffness: Some(&mut ke), stress: &mut stress };
+            self.kernel
+                .evaluate(&coords, &zero, self.material.as_ref(), &initial, &mut trial, buffers)
+                .map_err(|f| element_error(&self.name, self.material.name(), cell, f))?;
+            for (&s, k) in self.slots[cell * nd * nd..(cell + 1) * nd * nd].iter().zip(&ke) {
+                if s != NO_SLOT {
+                    values[s as usize] += k;
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Adds the set's internal force to `force` (all dofs) and its tangent to `values` (on the
     /// pattern, through the slot maps); cells are split over the rayon threads, each with its
     /// own accumulators, when the set is large.
@@ -620,6 +651,19 @@ impl Model {
             set.add_mass(&self.mesh.nodes, &mut values);
         }
         values
+    }
+
+    /// The initial elastic stiffness of the solid elements on the pattern (free dofs), each
+    /// set's tangent at zero displacement from its material's initial state, interfaces and
+    /// other contributions left out: the drag of a stiffness-proportional damped flow
+    /// ([`crate::nonlinear::damped_flow::FlowDamping::Stiffness`]).
+    pub fn initial_stiffness_matrix(&self) -> Result<Vec<f64>> {
+        let pattern = self.pattern.as_ref().expect("Model::finalize must be called before assembly");
+        let mut values = vec![0.0; pattern.nnz()];
+        for set in &self.sets {
+            set.add_initial_stiffness(&self.mesh.nodes, &mut values)?;
+        }
+        Ok(values)
     }
 
     /// Displacement at the last commit.

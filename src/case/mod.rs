@@ -445,6 +445,13 @@ pub struct SolverSpec {
     /// keeps state, i.e. the model is path dependent, "settle" otherwise).
     #[serde(default)]
     pub snap: SnapSpec,
+    /// The drag the damped flow moves against: "mass" (default: M du/dtau = -r, the
+    /// unit-density mass, a uniform viscous drag) or "stiffness" (K_0 du/dtau = -r, the
+    /// solid's initial elastic stiffness: stiffness-proportional damping, under which every
+    /// elastic mode relaxes at the same rate, so a snap of a large 3D body takes far fewer
+    /// steps; its path, and so the plastic work along it, differs).
+    #[serde(default)]
+    pub snap_damping: SnapDampingSpec,
     /// The damped flow's local error per step relative to the step's move (default 0.03).
     #[serde(default = "default_snap_tolerance")]
     pub snap_tolerance: f64,
@@ -462,6 +469,15 @@ pub enum SnapSpec {
     Auto,
     Settle,
     DampedFlow,
+}
+
+/// The damped flow's drag.
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum SnapDampingSpec {
+    #[default]
+    Mass,
+    Stiffness,
 }
 
 fn default_snap_tolerance() -> f64 {
@@ -591,7 +607,7 @@ pub fn defaults_help() -> String {
          method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"), \
          refactorization_cost_ratio = 0 (measured times), start_predictor = \"tangent\" (or \"none\"), \
          tangent = \"switch-on-failure\" (or \"consistent\", \"stabilized\"), \
-         snap = \"auto\" (damped-flow for a path-dependent model, else settle; or \"settle\", \"damped-flow\"), snap_tolerance = {}, snap_max_steps = {}; \
+         snap = \"auto\" (damped-flow for a path-dependent model, else settle; or \"settle\", \"damped-flow\"), snap_damping = \"mass\" (or \"stiffness\"), snap_tolerance = {}, snap_max_steps = {}; \
          interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
          output.directory = out/<name>, output.vtk = true; ensemble.seed = 1, threads_per_member = 0 (auto), \
          concurrent_members = 0 (auto).",

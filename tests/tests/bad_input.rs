@@ -76,6 +76,9 @@ fn a_snap_method_or_tolerance_out_of_range_names_the_key_and_the_choices() {
     let (msg, code) = failure(&p, &["solver.snap_tolerance=1.5"]);
     assert_eq!(code, 2);
     assert!(msg.contains("solver.snap_tolerance") && msg.contains("(0, 1)") && msg.contains("1.5"), "{msg}");
+    let (msg, code) = failure(&p, &["solver.snap_damping=\"viscous\""]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("snap_damping") && msg.contains("mass") && msg.contains("stiffness"), "{msg}");
 }
 
 #[test]

@@ -2,13 +2,16 @@
 //! closed forms: on one distorted 10-node tet, the row sums are integral N_a dV (-V/20 at a
 //! corner, V/5 at a midside node) and u^T M u = integral x^2 dV for u = x (the second moment
 //! V/20 (sum x_a^2 + (sum x_a)^2) over the corners a); assembled over a cube and an
-//! axisymmetric ring, the entries of one component add up to the volume.
+//! axisymmetric ring, the entries of one component add up to the volume. The initial
+//! stiffness (the drag of a stiffness-proportional flow) against the closed-form strain energy
+//! of a uniform strain, whatever plastic state the body is in.
 
 use std::sync::Arc;
 use stiction_core::element::{ElementKernel, Kinematics};
 use stiction_core::mesh::CellType;
+use stiction_core::problem::NonlinearProblem;
 use stiction_elements::{QuadratureChoice, SolidKernel};
-use stiction_materials::LinearElastic;
+use stiction_materials::{J2Plasticity, LinearElastic};
 use stiction_meshes::generate::{structured_cube, structured_rectangle};
 use stiction_tests::model_with;
 
@@ -62,4 +65,34 @@ fn assembled_mass_adds_up_to_the_volume_in_3d_and_axisymmetric() {
     let total: f64 = ring.mass_matrix().iter().sum();
     let expected = 2.0 * std::f64::consts::PI * (1.5f64.powi(2) - 0.5f64.powi(2));
     assert!((total - expected).abs() < 1e-12 * expected, "ring: {total} vs {expected}");
+}
+
+/// K_0 of an elastic-perfectly plastic unit cube is its elastic stiffness, before and after the
+/// cube has yielded: for the uniform strain u = (x, 0, 0), u^T K_0 u = (lambda + 2 mu) V (V = 1),
+/// while the tangent of the yielded state gives less; and K_0 is unchanged by the state.
+#[test]
+fn the_initial_stiffness_is_the_elastic_one_whatever_the_plastic_state() {
+    let (e, nu) = (100.0, 0.3);
+    let material = Arc::new(J2Plasticity::new("m", e, nu, 0.1, 0.0, 0.0).unwrap());
+    let mut cube = model_with(structured_cube(2, true, 0.25), Kinematics::Solid3D, material);
+    cube.finalize().unwrap();
+    let x: Vec<f64> = cube.mesh.nodes.iter().flat_map(|p| [p[0], 0.0, 0.0]).collect();
+    let pattern = cube.pattern().clone();
+    let energy = |values: &[f64]| {
+        let mut kx = vec![0.0; x.len()];
+        pattern.multiply(values, &x, &mut kx);
+        x.iter().zip(&kx).map(|(a, b)| a * b).sum::<f64>()
+    };
+    let (lambda, mu) = (e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)));
+    let before = cube.initial_stiffness_matrix().unwrap();
+    assert!((energy(&before) - (lambda + 2.0 * mu)).abs() < 1e-9 * (lambda + 2.0 * mu), "{}", energy(&before));
+    // stretched to a strain of 0.05 (50 times the yield strain) and committed
+    let stretched: Vec<f64> = x.iter().map(|u| 0.05 * u).collect();
+    cube.set_free_values(&stretched);
+    NonlinearProblem::assemble(&mut cube, true).unwrap();
+    cube.commit();
+    let yielded = energy(NonlinearProblem::tangent(&cube));
+    assert!(yielded < 0.9 * (lambda + 2.0 * mu), "the yielded tangent: {yielded}");
+    let after = cube.initial_stiffness_matrix().unwrap();
+    assert_eq!(before, after, "K_0 does not depend on the state");
 }

@@ -7,7 +7,16 @@
 //! with M the consistent mass of unit density ([`NonlinearProblem::mass`]: the L2 metric of
 //! displacement fields) and tau a fictitious time. The drag coefficient only rescales tau, so
 //! the path in u has no free parameter, and it converges with the mesh (M discretizes the L2
-//! product): a 3D body and its axisymmetric section follow the same path. The steps are
+//! product): a 3D body and its axisymmetric section follow the same path. [`FlowDamping`]
+//! chooses the drag: mass-proportional (M, the default) or stiffness-proportional (M replaced
+//! by the body's initial elastic stiffness K_0, Rayleigh's beta damping; the energy metric,
+//! which converges with the mesh too). Both are symmetric positive definite metrics, so either
+//! flow only descends the energy and ends on a stable state; they differ in which parts of the
+//! body move first. Against mass-proportional drag the small, stiff parts (a surface node
+//! under a steep adhesive force) move fast and the large, soft ones (a plastic neck creeping
+//! at its limit load) slowly; against stiffness-proportional drag every elastic mode relaxes
+//! at the same rate (a linear elastic body moves straight to its equilibrium), so only the
+//! nonlinear parts set the pace, and a flow needs far fewer steps. The steps are
 //! committed (see Commits below), so plastic flow and hysteretic interface laws follow the
 //! path (ABAQUS's `*STATIC, STABILIZE` damps with the same mass-proportional forces, with a
 //! damping factor instead of an accuracy). The flow ends on the stable equilibrium the snap
@@ -61,8 +70,8 @@
 
 use super::convergence::{NewtonSettings, ReferenceScales};
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
-use crate::error::Result;
-use crate::linear_solver::LinearSolver;
+use crate::error::{CoreError, Result};
+use crate::linear_solver::{FactorKind, LinearSolver};
 use crate::problem::{IntegratorStep, NonlinearProblem};
 use crate::sparse::SparsityPattern;
 use crate::vector::{distance_inf, norm, norm_inf};
@@ -85,12 +94,25 @@ pub struct FlowSettings {
     /// truncation error; Hairer and Wanner, Solving ODEs II, IV.8). 0: every step is solved to
     /// the solver's own equilibrium test.
     pub solve_share: f64,
+    /// Which drag the body moves against (the metric the caller hands to [`damped_flow`]).
+    pub damping: FlowDamping,
 }
 
 impl Default for FlowSettings {
     fn default() -> Self {
-        Self { tolerance: 0.03, max_steps: 5000, solve_share: 0.1 }
+        Self { tolerance: 0.03, max_steps: 5000, solve_share: 0.1, damping: FlowDamping::Mass }
     }
+}
+
+/// The drag of the damped flow (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FlowDamping {
+    /// M du/dtau = -r(u), M the consistent mass of unit density (ABAQUS's `*STATIC, STABILIZE`).
+    #[default]
+    Mass,
+    /// K_0 du/dtau = -r(u), K_0 the initial elastic stiffness of the solid (interfaces left
+    /// out): stiffness-proportional (Rayleigh beta) damping.
+    Stiffness,
 }
 
 /// What a flow took.
@@ -236,7 +258,9 @@ impl NonlinearProblem for DampedStep<'_> {
 }
 
 /// The flow's velocity at the problem's assembled state, v = -M^{-1} r, and the first step
-/// h_0 = 2 tolerance ||v|| / ||M^{-1} K v|| (one factorization of M).
+/// h_0 = 2 tolerance ||v|| / ||M^{-1} K v|| (one factorization of M, the drag matrix, which
+/// must be positive definite: a stiffness drag of a body its boundary conditions do not hold
+/// is singular, and such a flow would not descend).
 fn start_velocity(
     problem: &dyn NonlinearProblem,
     mass: &[f64],
@@ -245,7 +269,14 @@ fn start_velocity(
     report: &mut IncrementReport,
 ) -> Result<(Vec<f64>, f64)> {
     let timer = Instant::now();
-    linear.factorize(problem.pattern(), mass)?;
+    if !matches!(linear.factorize(problem.pattern(), mass), Ok(FactorKind::Llt)) {
+        return Err(CoreError::Invalid(
+            "the damped flow's drag matrix is not positive definite (a stiffness-proportional drag \
+             (solver.snap_damping = \"stiffness\") of a body that its boundary conditions do not hold \
+             in place is singular): use solver.snap_damping = \"mass\""
+                .into(),
+        ));
+    }
     report.factorization_seconds += timer.elapsed().as_secs_f64();
     report.factorizations += 1;
     let timer = Instant::now();
@@ -388,7 +419,9 @@ fn end_directly(
 }
 
 /// Follows the flow at the problem's current time from its trial state (the committed one) to
-/// a stable equilibrium (see the module documentation); `mass` is [`NonlinearProblem::mass`].
+/// a stable equilibrium (see the module documentation); `mass` is the drag matrix on the
+/// problem's pattern: [`NonlinearProblem::mass`], or the initial stiffness for
+/// [`FlowDamping::Stiffness`].
 /// Accepted steps are committed (except those that moved too little, see the module
 /// documentation); on success the problem holds the end state as its trial state (not
 /// committed). On failure the problem is at the last committed step. `progress` is

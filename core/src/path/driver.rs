@@ -45,7 +45,7 @@ use crate::error::{CoreError, Result};
 use crate::linear_solver::LinearSolver;
 use crate::model::Model;
 use crate::nonlinear::arc_length::PreviousIncrement;
-use crate::nonlinear::damped_flow::{FlowReport, FlowSettings, damped_flow};
+use crate::nonlinear::damped_flow::{FlowDamping, FlowReport, FlowSettings, damped_flow};
 use crate::nonlinear::settle::settle;
 use crate::nonlinear::{IncrementFailure, IncrementReport, NonlinearSolver, ReferenceScales};
 use crate::problem::NonlinearProblem;
@@ -293,7 +293,8 @@ struct Driver<'a> {
     since_output: usize,
     /// The largest displacement norm committed so far (the scale of round-off in increments).
     largest_displacement: f64,
-    /// The unit-density mass on the pattern (made at the first damped snap).
+    /// The damped flow's drag matrix on the pattern (made at the first damped snap): the
+    /// unit-density mass, or the initial stiffness ([`FlowDamping`]).
     mass: Option<Vec<f64>>,
     /// Damped-flow snaps that ended where their steps stalled near rest, and the largest
     /// residual over the test they ended at (see [`crate::nonlinear::damped_flow::STALLED_REST_FACTOR`]).
@@ -607,7 +608,13 @@ impl Driver<'_> {
         let flow = match self.plan.snap {
             SnapMethod::DampedFlow(flow) => {
                 if self.mass.is_none() {
-                    self.mass = NonlinearProblem::mass(&*self.model);
+                    self.mass = match flow.damping {
+                        FlowDamping::Mass => NonlinearProblem::mass(&*self.model),
+                        FlowDamping::Stiffness => match self.model.initial_stiffness_matrix() {
+                            Ok(stiffness) => Some(stiffness),
+                            Err(e) => return (Err(IncrementFailure::Error(e)), false, 0.0),
+                        },
+                    };
                 }
                 self.mass.as_deref().map(|mass| (flow, mass))
             }

@@ -366,3 +366,39 @@ fn the_flow_crosses_a_jump_in_its_velocity() {
     assert!(flow.kinks >= 1, "the crossing is reported");
     assert!(error < 0.5 * tol, "{error}");
 }
+
+/// Against a stiffness-proportional drag (the metric K = diag(1, 10) of the linear pair,
+/// [`super::FlowDamping::Stiffness`]) both modes relax at the same rate: the flow from (1, 1)
+/// is u = (1, 1) exp(-tau), the straight line y = x, where the mass drag's is y = x^10. Every
+/// committed state lies on that line, the flow ends at the origin, and in fewer steps than
+/// against the mass (whose stiff mode first sets the step).
+#[test]
+fn against_a_stiffness_drag_a_linear_body_moves_straight_to_its_equilibrium() {
+    let run = |drag: [f64; 2]| {
+        let mut p = Pair::new([1.0, 1.0], 0.0);
+        let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+        let scales = ReferenceScales::default();
+        let flow =
+            damped_flow(&mut p, &drag, &mut linear, &mut newton(), scales, &tolerance(0.03), &mut |_| {}).unwrap();
+        assert!(p.u[0].abs() < 1e-10 && p.u[1].abs() < 1e-10, "the flow ends at the origin: {:?}", p.u);
+        (p.committed, flow.steps)
+    };
+    let (path, steps) = run(STIFFNESS);
+    let off_the_line = path.iter().map(|c| (c[1] - c[0]).abs()).fold(0.0, f64::max);
+    let (_, mass_steps) = run([1.0, 1.0]);
+    println!("stiffness drag: {steps} steps, {off_the_line:.1e} off the line y = x; mass drag: {mass_steps} steps");
+    assert!(off_the_line < 1e-12, "{off_the_line}");
+    assert!(steps < mass_steps, "{steps} vs {mass_steps}");
+}
+
+/// A drag that is not positive definite (a stiffness drag of a body nothing holds) is refused
+/// with a message that names the setting to change, not followed.
+#[test]
+fn a_drag_that_is_not_positive_definite_is_refused_with_the_setting_to_change() {
+    let mut p = Pair::new([1.0, 1.0], 0.0);
+    let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+    let scales = ReferenceScales::default();
+    let result = damped_flow(&mut p, &[1.0, -1.0], &mut linear, &mut newton(), scales, &tolerance(0.03), &mut |_| {});
+    let message = result.err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(message.contains("not positive definite") && message.contains("snap_damping"), "{message}");
+}
