@@ -91,14 +91,26 @@ impl ElementSet {
         let mut coords = vec![[0.0; 3]; nn];
         let mut me = vec![0.0; nd * nd];
         for cell in 0..self.n_cells() {
-            for (a, &node) in self.cell(cell).iter().enumerate() {
-                coords[a] = nodes[node];
-            }
+            self.gather_coordinates(cell, nodes, &mut coords);
             self.kernel.mass(&coords, &mut me);
-            for (&s, m) in self.slots[cell * nd * nd..(cell + 1) * nd * nd].iter().zip(&me) {
-                if s != NO_SLOT {
-                    values[s as usize] += m;
-                }
+            self.add_cell_matrix(cell, &me, values);
+        }
+    }
+
+    /// The coordinates of cell `cell`'s nodes, in its local order, into `coords`.
+    fn gather_coordinates(&self, cell: usize, nodes: &[[f64; 3]], coords: &mut [[f64; 3]]) {
+        for (a, &node) in self.cell(cell).iter().enumerate() {
+            coords[a] = nodes[node];
+        }
+    }
+
+    /// Adds cell `cell`'s matrix `local` (n_dofs x n_dofs) to `values` on the pattern, through
+    /// the cell's slot map (entries of prescribed dofs have no slot).
+    fn add_cell_matrix(&self, cell: usize, local: &[f64], values: &mut [f64]) {
+        let nd = self.kernel.n_dofs();
+        for (&s, m) in self.slots[cell * nd * nd..(cell + 1) * nd * nd].iter().zip(local) {
+            if s != NO_SLOT {
+                values[s as usize] += m;
             }
         }
     }
@@ -118,18 +130,12 @@ impl ElementSet {
         let mut trial = initial.clone();
         let (mut fe, mut ke, mut stress) = (vec![0.0; nd], vec![0.0; nd * nd], vec![[0.0; 6]; nq]);
         for cell in 0..self.n_cells() {
-            for (a, &node) in self.cell(cell).iter().enumerate() {
-                coords[a] = nodes[node];
-            }
+            self.gather_coordinates(cell, nodes, &mut coords);
             let buffers = ElementBuffers { force: &mut fe, stiffness: Some(&mut ke), stress: &mut stress };
             self.kernel
                 .evaluate(&coords, &zero, self.material.as_ref(), &initial, &mut trial, buffers)
                 .map_err(|f| element_error(&self.name, self.material.name(), cell, f))?;
-            for (&s, k) in self.slots[cell * nd * nd..(cell + 1) * nd * nd].iter().zip(&ke) {
-                if s != NO_SLOT {
-                    values[s as usize] += k;
-                }
-            }
+            self.add_cell_matrix(cell, &ke, values);
         }
         Ok(())
     }
