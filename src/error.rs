@@ -15,14 +15,18 @@ pub enum StictionError {
     Materials(#[from] stiction_materials::MaterialsError),
     #[error(transparent)]
     Core(#[from] stiction_core::CoreError),
-    #[error("the run stopped at t = {time:.6}: {message} (every converged step so far is in '{out}')")]
-    RunFailed { time: f64, message: String, out: PathBuf },
+    #[error(
+        "the run stopped at t = {time:.6}: {message} (every converged step so far is in '{out}'{})",
+        if *resumable { "; to go on from its last checkpoint, e.g. with other solver settings: the same command with --resume" } else { "" }
+    )]
+    RunFailed { time: f64, message: String, out: PathBuf, resumable: bool },
     #[error("output folder '{path}' {message}")]
     Output { path: PathBuf, message: String },
     #[error(
-        "interrupted at t = {time:.6}; every converged step so far is in '{out}' (summary.json says \"interrupted\")"
+        "interrupted at t = {time:.6}; every converged step so far is in '{out}' (summary.json says \"interrupted\"){}",
+        if *resumable { "; to go on from there: the same command with --resume" } else { "" }
     )]
-    Interrupted { time: f64, out: PathBuf },
+    Interrupted { time: f64, out: PathBuf, resumable: bool },
     #[error(
         "ensemble interrupted with {completed} of {members} members complete in '{out}'; run the same command again \
          to resume (completed members are skipped)"

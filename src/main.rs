@@ -41,8 +41,18 @@ enum Command {
         #[arg(long)]
         quiet: bool,
         /// Replace an earlier run in the output folder (a non-empty folder is refused otherwise).
-        #[arg(long)]
+        #[arg(long, conflicts_with = "resume")]
         overwrite: bool,
+        /// Go on with the run in the output folder from its checkpoint (restart.bin, written
+        /// every output.checkpoint_minutes and when a run fails or is stopped). The case must
+        /// describe the same problem; its [solver] settings, step increments and output may
+        /// change.
+        #[arg(long)]
+        resume: bool,
+        /// Stop, as if interrupted (with a checkpoint), once this many increments are committed
+        /// in all: to split a long run into parts.
+        #[arg(long, value_name = "N")]
+        stop_after: Option<usize>,
     },
     /// Run the N members of a case's [ensemble] (each in DIR/member-NNN/) and aggregate them:
     /// mean, standard deviation and 95% confidence interval of every summary quantity
@@ -337,12 +347,14 @@ fn run_ensemble(
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run { input: CaseInput { case, out, sets }, quiet, overwrite } => (|| {
+        Command::Run { input: CaseInput { case, out, sets }, quiet, overwrite, resume, stop_after } => (|| {
             let options = RunOptions {
                 out,
                 progress: !quiet && std::io::stderr().is_terminal(),
                 overwrite,
                 interrupt: Some(interrupt_on_ctrl_c()),
+                resume,
+                stop_after_increments: stop_after,
             };
             for summary in stiction::sweep::run_sweep(&case, &sets, &options)? {
                 // a closed stdout (e.g. `| head -1`) is not an error of the run

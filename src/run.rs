@@ -11,13 +11,16 @@ use crate::error::{Result, StictionError};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
+use std::time::Duration;
 use stiction_core::CoreError;
+use stiction_core::checkpoint::CheckpointPlan;
 use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
 use stiction_core::model::Model;
 use stiction_core::nonlinear::damped_flow::{FlowDamping, FlowSettings};
 use stiction_core::nonlinear::{NewtonSolver, NonlinearSolver, QuasiNewtonSolver};
 use stiction_core::path::{
-    Continuation, ContinuationMethod, RunPlan, SnapMethod, StartPredictor, TangentChoice, run_steps,
+    Checkpoint, Continuation, ContinuationMethod, RunPlan, SnapMethod, StartPredictor, TangentChoice, resume_steps,
+    run_steps,
 };
 use stiction_core::record::{
     CyclesWriter, EventsRecorder, HistoryRecorder, MessageLog, Observer, SummaryWriter, VtkRecorder,
@@ -36,6 +39,11 @@ pub struct RunOptions {
     pub overwrite: bool,
     /// Set to stop the run after the increment in progress (Ctrl-C).
     pub interrupt: Option<Arc<AtomicBool>>,
+    /// Go on from the checkpoint of an earlier run of the case in the output folder
+    /// ([`crate::resume`]) instead of starting afresh.
+    pub resume: bool,
+    /// Stop (as if interrupted, with a checkpoint) once this many increments are committed.
+    pub stop_after_increments: Option<usize>,
 }
 
 /// Output directory of a case: `--out`, else `output.directory`, else `out/<name>`.
@@ -47,10 +55,19 @@ pub fn output_directory(case: &LoadedCase, options: &RunOptions) -> PathBuf {
         .unwrap_or_else(|| PathBuf::from("out").join(&case.name))
 }
 
-/// Builds and runs a case.
+/// Builds and runs a case, or goes on with it from its checkpoint (`options.resume`).
 pub fn run(case: &LoadedCase, options: &RunOptions) -> Result<RunSummary> {
+    let out = output_directory(case, options);
+    if options.resume {
+        // refuse a checkpoint of another problem before the (possibly long) build
+        let path = crate::resume::checkpoint_path(case, &out)?;
+        let checkpoint = Checkpoint::read(&path)?;
+        crate::resume::check_same_problem(case, &path, &checkpoint.fingerprint, &crate::resume::fingerprint(case))?;
+        let mut built = build(case)?;
+        return run_built(case, &mut built, options, Some(checkpoint));
+    }
     // refuse an occupied output folder before the (possibly long) build; replace it only after
-    crate::output_folder::check(&output_directory(case, options), options.overwrite)?;
+    crate::output_folder::check(&out, options.overwrite)?;
     let mut built = build(case)?;
     run_model(case, &mut built, options)
 }
@@ -64,14 +81,14 @@ fn observers(
 ) -> Result<Vec<Box<dyn Observer>>> {
     let model = &built.model;
     let mut list: Vec<Box<dyn Observer>> = vec![
-        Box::new(HistoryRecorder::create(
+        Box::new(HistoryRecorder::new(
             &out.join("history.csv"),
             model,
             built.reaction_groups.clone(),
             built.load_groups.clone(),
-        )?),
-        Box::new(EventsRecorder::create(&out.join("events.csv"))?),
-        Box::new(MessageLog::create(&out.join("messages.log"))?),
+        )),
+        Box::new(EventsRecorder::new(&out.join("events.csv"))),
+        Box::new(MessageLog::new(&out.join("messages.log"))),
     ];
     if case.case.output.vtk {
         list.push(Box::new(VtkRecorder::new(out, &case.name, model)));
@@ -85,7 +102,6 @@ fn observers(
     Ok(list)
 }
 
-/// Runs an already built model; the model keeps the final converged state for inspection.
 /// The case's `solver.continuation` as the driver's crossing plan.
 fn continuation(solver: &SolverSpec) -> Option<Continuation> {
     let method = match solver.continuation {
@@ -116,13 +132,28 @@ fn snap_method(solver: &SolverSpec, model: &Model) -> SnapMethod {
     }
 }
 
+/// Runs an already built model from its initial state; the model keeps the final converged
+/// state for inspection.
 pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions) -> Result<RunSummary> {
+    run_built(case, built, options, None)
+}
+
+/// Runs an already built model from its initial state, or from `checkpoint` (the output folder
+/// then holds the checkpointed run, which goes on).
+fn run_built(
+    case: &LoadedCase,
+    built: &mut BuiltModel,
+    options: &RunOptions,
+    checkpoint: Option<Checkpoint>,
+) -> Result<RunSummary> {
     if case.case.solver.threads > 0 {
         // Ignored if a global pool exists already (e.g. several runs in one process).
         let _ = rayon::ThreadPoolBuilder::new().num_threads(case.case.solver.threads).build_global();
     }
     let out = output_directory(case, options);
-    crate::output_folder::prepare(&out, options.overwrite)?;
+    if checkpoint.is_none() {
+        crate::output_folder::prepare(&out, options.overwrite)?;
+    }
     for (name, points) in &built.layouts {
         let path = out.join(format!("{name}_points.csv"));
         crate::build::write_points_csv(&path, points).map_err(|source| CoreError::Write { path, source })?;
@@ -146,6 +177,12 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
             TangentSpec::Consistent => TangentChoice::Consistent,
             TangentSpec::Stabilized => TangentChoice::Stabilized,
         },
+        checkpoint: Some(CheckpointPlan {
+            path: out.join(crate::resume::CHECKPOINT_FILE),
+            interval: Duration::from_secs_f64(60.0 * case.case.output.checkpoint_minutes),
+            fingerprint: crate::resume::fingerprint(case),
+        }),
+        stop_after_increments: options.stop_after_increments,
     };
     let ordering = match case.case.solver.ordering {
         OrderingSpec::NestedDissection => Ordering::NestedDissection,
@@ -163,16 +200,22 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
         },
         MethodSpec::Newton => Box::new(NewtonSolver { settings: built.newton.clone() }),
     };
-    let summary = run_steps(&mut built.model, &plan, &mut linear, nonlinear.as_mut(), &mut observers)?;
+    let summary = match checkpoint {
+        None => run_steps(&mut built.model, &plan, &mut linear, nonlinear.as_mut(), &mut observers)?,
+        Some(checkpoint) => {
+            resume_steps(&mut built.model, &plan, &mut linear, nonlinear.as_mut(), &mut observers, checkpoint)?
+        }
+    };
+    let resumable = out.join(crate::resume::CHECKPOINT_FILE).exists();
     for w in &summary.warnings {
         eprintln!("warning: {w}");
     }
     if summary.status == "interrupted" {
-        return Err(StictionError::Interrupted { time: summary.final_time, out });
+        return Err(StictionError::Interrupted { time: summary.final_time, out, resumable });
     }
     if summary.status == "failed" {
         let message = summary.message.clone().unwrap_or_default();
-        return Err(StictionError::RunFailed { time: summary.final_time, message, out });
+        return Err(StictionError::RunFailed { time: summary.final_time, message, out, resumable });
     }
     Ok(summary)
 }

@@ -22,6 +22,12 @@ pub fn run_sweep(path: &Path, sets: &[String], options: &RunOptions) -> Result<V
     if sweep.values.is_empty() {
         return Err(base.error("sweep.values", "needs at least one value"));
     }
+    if options.resume {
+        return Err(base.error(
+            "sweep",
+            "is set: --resume goes on with a single run, not a sweep (run the sweep again to repeat it)",
+        ));
+    }
     let out = output_directory(&base, options);
     crate::output_folder::prepare(&out, options.overwrite)?;
     let label = sweep.label.clone().unwrap_or_else(|| sweep.key.clone());

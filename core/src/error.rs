@@ -19,6 +19,8 @@ pub enum CoreError {
     Factorization(String),
     #[error("non-finite value in the {0}")]
     NonFinite(String),
+    #[error("checkpoint '{path}': {message}")]
+    Checkpoint { path: PathBuf, message: String },
     #[error("could not write '{path}': {source}")]
     Write { path: PathBuf, source: std::io::Error },
 }

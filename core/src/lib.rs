@@ -12,9 +12,11 @@
 //!   driver that runs a whole analysis, notifying [`record`] observers of every committed
 //!   increment (history.csv, events.csv, VTK series, summary.json).
 //! * [`amplitude`]: piecewise-linear histories in pseudo-time.
+//! * [`checkpoint`]: a run's committed state on disk, to resume it in another process.
 //! * [`output`]: VTK XML (`.vtu` + `.pvd`) and CSV writers, each file written atomically.
 
 pub mod amplitude;
+pub mod checkpoint;
 pub mod element;
 pub mod error;
 pub mod interface_law;

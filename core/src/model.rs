@@ -17,6 +17,8 @@ use crate::voigt::Stress;
 use rayon::prelude::*;
 use std::sync::Arc;
 
+pub use crate::checkpoint::ModelState;
+
 /// Cells that share one kernel and one material.
 pub struct ElementSet {
     /// Name (the physical group) for messages and output.
@@ -80,6 +82,22 @@ impl ElementSet {
     /// Committed material state, `n_points * n_state` numbers.
     pub fn committed_state(&self) -> &[f64] {
         &self.state_committed
+    }
+
+    /// Replaces the committed (and trial) material state by `saved`, which must have the
+    /// length of [`Self::committed_state`]; Err names both lengths.
+    fn restore_committed_state(&mut self, saved: &[f64]) -> std::result::Result<(), String> {
+        if saved.len() != self.state_committed.len() {
+            return Err(format!(
+                "element set '{}' has {} material state values, the checkpoint {}",
+                self.name,
+                self.state_committed.len(),
+                saved.len()
+            ));
+        }
+        self.state_committed.copy_from_slice(saved);
+        self.state_trial.copy_from_slice(saved);
+        Ok(())
     }
 }
 
@@ -326,6 +344,14 @@ pub trait Contribution: Send {
     fn point_output(&self) -> Option<(Vec<[f64; 3]>, Vec<crate::output::vtk::Field>)> {
         None
     }
+    /// Everything committed that the contribution's next assembly, observables and point
+    /// output depend on, as numbers, for a checkpoint (empty for one without state). Required,
+    /// so that no contribution with state is checkpointed without it.
+    fn saved_state(&self) -> Vec<f64>;
+    /// Makes `saved` (from [`Self::saved_state`] of a contribution built the same way) the
+    /// committed and trial state; Err says why it does not fit
+    /// ([`crate::checkpoint::SavedNumbers`] reads it back).
+    fn restore_state(&mut self, saved: &[f64]) -> std::result::Result<(), String>;
 }
 
 /// A prescribed displacement component: u[dof] = scale * amplitude(t).
@@ -670,6 +696,54 @@ impl Model {
             set.add_initial_stiffness(&self.mesh.nodes, &mut values)?;
         }
         Ok(values)
+    }
+
+    /// The committed state, everything a run needs to go on from it: time, displacement, the
+    /// element sets' material states and the contributions' states
+    /// ([`Contribution::saved_state`]).
+    pub fn saved_state(&self) -> ModelState {
+        ModelState {
+            time: self.time_committed,
+            displacement: self.displacement_committed.clone(),
+            sets: self.sets.iter().map(|s| s.state_committed.clone()).collect(),
+            contributions: self.contributions.iter().map(|c| c.saved_state()).collect(),
+        }
+    }
+
+    /// Makes `saved` (of a model built the same way) the committed and trial state, then
+    /// assembles the residual there so that everything derived from the last assembly (internal
+    /// force, reactions, stresses) is that of the committed state. Err says which part does not
+    /// fit this model.
+    pub fn restore_state(&mut self, saved: &ModelState) -> std::result::Result<(), String> {
+        if saved.displacement.len() != self.displacement.len() {
+            return Err(format!(
+                "the model has {} displacement values, the checkpoint {}",
+                self.displacement.len(),
+                saved.displacement.len()
+            ));
+        }
+        if saved.sets.len() != self.sets.len() || saved.contributions.len() != self.contributions.len() {
+            return Err(format!(
+                "the model has {} element sets and {} interfaces, the checkpoint {} and {}",
+                self.sets.len(),
+                self.contributions.len(),
+                saved.sets.len(),
+                saved.contributions.len()
+            ));
+        }
+        for (set, state) in self.sets.iter_mut().zip(&saved.sets) {
+            set.restore_committed_state(state)?;
+        }
+        for (c, state) in self.contributions.iter_mut().zip(&saved.contributions) {
+            c.restore_state(state).map_err(|e| format!("interface '{}': {e}", c.name()))?;
+        }
+        self.displacement_committed.clone_from(&saved.displacement);
+        self.displacement.clone_from(&saved.displacement);
+        self.apply_time(saved.time);
+        self.time_committed = saved.time;
+        self.assemble(false).map_err(|e| format!("the restored state does not assemble: {e}"))?;
+        self.rollback();
+        Ok(())
     }
 
     /// Displacement at the last commit.

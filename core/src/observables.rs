@@ -7,7 +7,7 @@
 pub const LAW_GAP_FIELD: &str = "footprint_law_gap";
 
 /// Interface quantities at the committed state (forces positive compressive).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct InterfaceObservables {
     /// Approach of a rigid flat toward the body (None for interfaces without a flat).
     pub approach: Option<f64>,

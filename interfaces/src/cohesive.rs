@@ -14,6 +14,7 @@ use crate::point_law::{evaluate_point, evaluate_point_mixed, initial_states};
 use std::collections::HashMap;
 use std::sync::Arc;
 use stiction_core::CoreError;
+use stiction_core::checkpoint::SavedNumbers;
 use stiction_core::element::Kinematics;
 use stiction_core::interface_law::{InterfaceLaw, LawKind};
 use stiction_core::mesh::Mesh;
@@ -298,6 +299,39 @@ impl Contribution for CohesiveElements {
 
     fn rollback(&mut self) {
         self.state_trial.copy_from_slice(&self.state_committed);
+    }
+
+    /// The law's states, the summary, and per point the committed value, tangent and opening.
+    fn saved_state(&self) -> Vec<f64> {
+        let mut saved = self.state_committed.clone();
+        saved.extend(self.committed_summary);
+        for p in &self.committed_points {
+            saved.extend(p.value);
+            saved.extend(p.tangent.iter().flatten());
+            saved.extend(p.opening);
+        }
+        saved
+    }
+
+    fn restore_state(&mut self, saved: &[f64]) -> Result<(), String> {
+        let n = self.points.len();
+        let mut saved = SavedNumbers::new(saved, self.state_committed.len() + 3 + 15 * n)?;
+        let ns = self.state_committed.len();
+        self.state_committed.copy_from_slice(saved.take(ns));
+        self.state_trial.clone_from(&self.state_committed);
+        self.committed_summary.copy_from_slice(saved.take(3));
+        self.trial_summary = self.committed_summary;
+        let three = |s: &[f64]| [s[0], s[1], s[2]];
+        for (i, p) in self.committed_points.iter_mut().enumerate() {
+            let value = three(saved.take(3));
+            let t = saved.take(9);
+            let tangent = [three(&t[0..3]), three(&t[3..6]), three(&t[6..9])];
+            let opening = three(saved.take(3));
+            *p = PointState { value, tangent, opening };
+            (self.value[i], self.slope[i], self.opening[i]) = (value, tangent, opening);
+        }
+        self.committed_fields = (self.opening.clone(), self.value.clone());
+        Ok(())
     }
 
     fn observables(&self) -> Option<InterfaceObservables> {

@@ -32,6 +32,7 @@ use crate::point_placement::place_points;
 use std::sync::Arc;
 use stiction_core::CoreError;
 use stiction_core::amplitude::Amplitude;
+use stiction_core::checkpoint::SavedNumbers;
 use stiction_core::element::Kinematics;
 use stiction_core::interface_law::{InterfaceLaw, LawKind};
 use stiction_core::mesh::Mesh;
@@ -522,6 +523,44 @@ impl Contribution for RigidFlat {
 
     fn rollback(&mut self) {
         self.state_trial.copy_from_slice(&self.state_committed);
+    }
+
+    /// The law's states, the gaps and slopes (for the viscous term), the output fields, the
+    /// summary, and the time, viscous work and resistance, all committed.
+    fn saved_state(&self) -> Vec<f64> {
+        let mut saved = self.state_committed.clone();
+        saved.extend(&self.gap_committed);
+        saved.extend(&self.slope_committed);
+        self.committed_fields.iter().for_each(|f| saved.extend(f));
+        saved.extend(self.committed_summary);
+        saved.extend([self.time_committed, self.viscous_committed, self.resistance_committed]);
+        saved
+    }
+
+    fn restore_state(&mut self, saved: &[f64]) -> Result<(), String> {
+        let n = self.points.len();
+        let expected = self.state_committed.len() + (2 + self.committed_fields.len()) * n + 4 + 3;
+        let mut saved = SavedNumbers::new(saved, expected)?;
+        let ns = self.state_committed.len();
+        self.state_committed.copy_from_slice(saved.take(ns));
+        self.state_trial.clone_from(&self.state_committed);
+        self.gap_committed = saved.take(n).to_vec();
+        self.slope_committed = saved.take(n).to_vec();
+        for f in &mut self.committed_fields {
+            f.copy_from_slice(saved.take(n));
+        }
+        self.committed_summary.copy_from_slice(saved.take(4));
+        (self.time_committed, self.viscous_committed, self.resistance_committed) =
+            (saved.scalar(), saved.scalar(), saved.scalar());
+        // the trial copies, as a commit leaves them
+        self.gap.clone_from(&self.committed_fields[0]);
+        self.value.clone_from(&self.committed_fields[1]);
+        self.area.clone_from(&self.committed_fields[2]);
+        self.contact = self.committed_fields[3].iter().map(|&c| c != 0.0).collect();
+        self.slope.clone_from(&self.slope_committed);
+        (self.trial_summary, self.trial_time, self.viscous_trial) =
+            (self.committed_summary, self.time_committed, self.viscous_committed);
+        Ok(())
     }
 
     /// A footprint spans several faces: its nodes are coupled beyond any one element.

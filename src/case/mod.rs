@@ -609,7 +609,7 @@ pub fn defaults_help() -> String {
          tangent = \"switch-on-failure\" (or \"consistent\", \"stabilized\"), \
          snap = \"auto\" (damped-flow for a path-dependent model, else settle; or \"settle\", \"damped-flow\"), snap_damping = \"mass\" (or \"stiffness\"), snap_tolerance = {}, snap_max_steps = {}; \
          interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
-         output.directory = out/<name>, output.vtk = true; ensemble.seed = 1, threads_per_member = 0 (auto), \
+         output.directory = out/<name>, output.vtk = true, output.checkpoint_minutes = 10; ensemble.seed = 1, threads_per_member = 0 (auto), \
          concurrent_members = 0 (auto).",
         n.max_iterations,
         n.tol_residual,
@@ -633,6 +633,16 @@ pub struct OutputSpec {
     /// Write VTK files (default true).
     #[serde(default = "yes")]
     pub vtk: bool,
+    /// Wall minutes between checkpoints (`restart.bin` in the output folder, to go on with
+    /// `stiction run --resume`); 0 writes one at every commit. A failed or stopped run always
+    /// writes one; a completed run removes it.
+    #[serde(default = "default_checkpoint_minutes")]
+    pub checkpoint_minutes: f64,
+}
+
+/// Default of `output.checkpoint_minutes`.
+fn default_checkpoint_minutes() -> f64 {
+    10.0
 }
 
 impl Default for OutputSpec {
@@ -647,6 +657,8 @@ pub struct LoadedCase {
     pub case: Case,
     pub path: PathBuf,
     pub name: String,
+    /// The case as read, merged over its base and with the `--set` overrides applied.
+    pub value: toml::Value,
 }
 
 impl LoadedCase {
@@ -664,9 +676,10 @@ impl LoadedCase {
 pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase> {
     let bad = |message: String| StictionError::Case { path: path.to_path_buf(), message };
     let (text, merged) = base::read(path)?;
-    let case: Case = if sets.is_empty() && merged.is_none() {
+    let (case, value): (Case, toml::Value) = if sets.is_empty() && merged.is_none() {
         // parsed from the text, so errors keep their line numbers
-        toml::from_str(&text).map_err(|e| bad(e.to_string()))?
+        let case = toml::from_str(&text).map_err(|e| bad(e.to_string()))?;
+        (case, toml::from_str(&text).map_err(|e| bad(e.to_string()))?)
     } else {
         let mut value = match merged {
             Some(v) => v,
@@ -676,11 +689,11 @@ pub fn load(path: &Path, sets: &[String]) -> Result<LoadedCase> {
             overrides::apply(&mut value, set).map_err(|m| bad(format!("--set {set}: {m}")))?;
         }
         let after = if sets.is_empty() { " (merged over its base)" } else { " (after --set overrides)" };
-        Case::deserialize(value).map_err(|e| bad(format!("{e}{after}")))?
+        (Case::deserialize(value.clone()).map_err(|e| bad(format!("{e}{after}")))?, value)
     };
     let name =
         case.name.clone().unwrap_or_else(|| path.file_stem().and_then(|s| s.to_str()).unwrap_or("case").to_string());
-    let loaded = LoadedCase { case, path: path.to_path_buf(), name };
+    let loaded = LoadedCase { case, path: path.to_path_buf(), name, value };
     validate::validate(&loaded)?;
     ensemble_spec::validate(&loaded)?;
     Ok(loaded)

@@ -20,6 +20,10 @@ fn positive(case: &LoadedCase, key: &str, v: f64) -> Result<()> {
 }
 
 pub fn validate(case: &LoadedCase) -> Result<()> {
+    let minutes = case.case.output.checkpoint_minutes;
+    if !(minutes.is_finite() && minutes >= 0.0) {
+        return Err(case.error("output.checkpoint_minutes", format!("must be a finite number >= 0, got {minutes}")));
+    }
     solver(case)?;
     steps(case)?;
     mesh(case)?;

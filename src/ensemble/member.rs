@@ -63,6 +63,7 @@ pub fn run_member(context: &MemberContext, member: &Member, threads: usize) -> M
             progress: false,
             overwrite: true,
             interrupt: context.interrupt.clone(),
+            ..Default::default()
         };
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.max(1)).build().map_err(|e| {
             StictionError::Output { path: folder.clone(), message: format!("cannot start {threads} threads: {e}") }

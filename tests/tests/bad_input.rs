@@ -82,6 +82,24 @@ fn a_snap_method_or_tolerance_out_of_range_names_the_key_and_the_choices() {
 }
 
 #[test]
+fn a_negative_checkpoint_interval_names_the_key_and_a_checkpoint_of_another_kind_is_refused_by_name() {
+    let p = scratch("checkpoint.toml", &base_case(&cantilever_geo()));
+    let (msg, code) = failure(&p, &["output.checkpoint_minutes=-1.0"]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("output.checkpoint_minutes") && msg.contains(">= 0") && msg.contains("-1"), "{msg}");
+    // a restart.bin that is not a checkpoint: the run names the file and says so
+    let out = p.with_extension("out");
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("restart.bin"), "step,time\n").unwrap();
+    let options = stiction::run::RunOptions { out: Some(out.clone()), resume: true, ..Default::default() };
+    let err = stiction::run::run(&case::load(&p, &[]).unwrap(), &options).unwrap_err();
+    let msg = err.to_string();
+    assert_eq!(err.exit_code(), 2, "{msg}");
+    assert!(msg.contains("restart.bin") && msg.contains("is not a Stiction checkpoint"), "{msg}");
+}
+
+#[test]
 fn missing_group_lists_the_known_groups() {
     let p =
         scratch("missing-group.toml", &base_case(&cantilever_geo()).replace("group = \"clamp\"", "group = \"clmp\""));

@@ -149,6 +149,8 @@ fn run_on_path(incrementation: Incrementation, twist: Twist) -> Run {
         start_predictor: StartPredictor::Tangent,
         snap: SnapMethod::Settle,
         tangent: TangentChoice::Consistent,
+        checkpoint: None,
+        stop_after_increments: None,
     };
     let model = &mut built.model;
     let mut linear = FaerCholesky::analyse_with(model.pattern(), Ordering::Amd).unwrap();

@@ -29,7 +29,7 @@ use crate::vector::{dot, norm};
 use std::time::Instant;
 
 /// The last converged increment, which orients the next one.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct PreviousIncrement {
     /// Free-dof displacement increment.
     pub du: Vec<f64>,

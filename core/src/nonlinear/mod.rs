@@ -132,6 +132,10 @@ pub trait NonlinearSolver {
     ) -> Result<IncrementReport, IncrementFailure>;
     /// The settings (convergence test, iteration limits) this solver applies.
     fn settings(&self) -> &NewtonSettings;
+    /// Forgets what the solver learned from earlier increments (a factor it reuses, how its
+    /// last increments went), as a solver made now would be: at a checkpoint, so that a run
+    /// resumed from it in another process goes on the same way. The default keeps nothing.
+    fn start_afresh(&mut self) {}
     /// Moves the problem's trial state (the committed state) along the tangent from `t0` to
     /// `t1` ([`tangent_predictor`]); `rate_step` is the step of the difference in t, the costs
     /// go to `report`. The default factorizes the committed tangent; a solver that keeps a

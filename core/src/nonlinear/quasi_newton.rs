@@ -165,6 +165,12 @@ impl NonlinearSolver for QuasiNewtonSolver {
         &self.settings
     }
 
+    /// Drops the factor and the increments' record; the refactorization costs (measured or
+    /// fixed) are kept.
+    fn start_afresh(&mut self) {
+        *self = Self { slow_ratio: self.slow_ratio, costs: self.costs, ..Self::new(self.settings.clone()) };
+    }
+
     /// The tangent predictor on the solver's own factor when it holds one; otherwise on a
     /// factor of the committed tangent, which the iterations then start from.
     fn predict_along_tangent(

@@ -120,6 +120,7 @@ fn check_len(path: &Path, f: &Field, n: usize) -> Result<()> {
 
 /// A ParaView data collection (`.pvd`): rewritten atomically after every added step, so it
 /// always lists exactly the `.vtu` files that exist.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct PvdSeries {
     path: PathBuf,
     entries: Vec<(f64, String)>,
@@ -133,6 +134,11 @@ impl PvdSeries {
     /// Adds a dataset (file name relative to the `.pvd`) at `time` and rewrites the collection.
     pub fn add(&mut self, time: f64, file: &str) -> Result<()> {
         self.entries.push((time, file.to_string()));
+        self.write()
+    }
+
+    /// Rewrites the collection file with the datasets listed now.
+    pub fn write(&self) -> Result<()> {
         let mut xml = String::from(
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n",
         );

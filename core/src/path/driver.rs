@@ -34,6 +34,10 @@
 //! Tangents: a failed attempt may switch the model between the materials' consistent and
 //! stabilized tangents for the attempts after it, and a failed snap is retried on the other
 //! tangent before the run stops ([`TangentSwitch`], `solver.tangent`).
+//!
+//! Checkpoints: the committed state is written between increments as the plan asks, and when
+//! the run fails or is stopped; [`resume_steps`] goes on from one in another process
+//! ([`checkpointing`]).
 
 use super::arc_length_control::ArcLengthControl;
 use super::dissipation_control::DissipationControl;
@@ -41,6 +45,7 @@ use super::load_control::{LoadControl, StartPredictor};
 use super::step::StepPlan;
 use super::tangent_choice::{TangentChoice, TangentSwitch};
 use super::{Attempt, Crossing, PathControl, Solvers, StepWindow};
+use crate::checkpoint::CheckpointPlan;
 use crate::error::{CoreError, Result};
 use crate::linear_solver::LinearSolver;
 use crate::model::Model;
@@ -57,6 +62,10 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
+
+pub mod checkpointing;
+pub use checkpointing::Checkpoint;
+use checkpointing::EarlierParts;
 
 /// A load-controlled increment whose displacement increment exceeds this multiple of the one
 /// the previous increment's rate predicts counts as a jump over a limit point.
@@ -111,6 +120,11 @@ pub struct RunPlan {
     pub snap: SnapMethod,
     /// Which material tangent the solvers see.
     pub tangent: TangentChoice,
+    /// Where and how often the run writes checkpoints (None: never).
+    pub checkpoint: Option<CheckpointPlan>,
+    /// Stop the run (as if interrupted, with a checkpoint) once this many increments are
+    /// committed in all: a run split in parts, e.g. to test that resuming it changes nothing.
+    pub stop_after_increments: Option<usize>,
 }
 
 /// How a snap (a jump at a fixed load to the stable state the system reaches) is solved.
@@ -172,52 +186,83 @@ pub fn run_steps(
     nonlinear: &mut dyn NonlinearSolver,
     observers: &mut [Box<dyn Observer>],
 ) -> Result<RunSummary> {
-    let wall = Instant::now();
-    let first = plan.steps.first().expect("a run plan has at least one step");
-    let tangent = TangentSwitch::start(plan.tangent, model);
-    let mut driver = Driver {
-        tangent,
-        tracker: InterfaceTracker::new(model, &plan.interfaces),
-        summary: initial_summary(model, plan, linear.factor_nnz()),
-        breakpoints: breakpoints(model, plan),
-        t: 0.0,
-        t_end: plan.steps.last().map_or(0.0, |s| s.end_time),
-        load: LoadControl::new(&first.incrementation, plan.start_predictor),
-        crossing: None,
-        last_converged: None,
-        arc_blocked: false,
-        cuts_since_commit: 0,
-        snaps_in_a_row: 0,
-        small_commits_in_a_row: 0,
-        crawling: false,
-        law_failures: BTreeMap::new(),
-        force_sum: (0.0, 0),
-        since_output: 0,
-        largest_displacement: 0.0,
-        mass: None,
-        stalled_snaps: (0, 0.0),
-        unbalanced_start: None,
-        model,
-        plan,
-        linear,
-        nonlinear,
-        observers,
-    };
+    let mut driver = Driver::new(model, plan, linear, nonlinear, observers);
     for o in driver.observers.iter_mut() {
         o.started(driver.model, &driver.summary)?;
     }
     driver.initial_state()?;
-    let mut ending = None;
-    let mut step_start = 0.0;
-    for si in 0..plan.steps.len() {
-        if let Some(end) = driver.run_step(si, step_start)? {
-            ending = Some(end);
-            break;
+    driver.run_from(0, 0.0, false)
+}
+
+/// Goes on with a run from `checkpoint` (written by a run of the same model, see
+/// [`Checkpoint`]): the model, the driver and the observers take up the checkpointed state,
+/// and the steps run on from there. The plan's solver settings may differ from the
+/// checkpointed run's; its model and steps may not (the caller compares fingerprints).
+pub fn resume_steps(
+    model: &mut Model,
+    plan: &RunPlan,
+    linear: &mut dyn LinearSolver,
+    nonlinear: &mut dyn NonlinearSolver,
+    observers: &mut [Box<dyn Observer>],
+    checkpoint: Checkpoint,
+) -> Result<RunSummary> {
+    let mut driver = Driver::new(model, plan, linear, nonlinear, observers);
+    let (step, step_start) = driver.restore(checkpoint)?;
+    driver.run_from(step, step_start, true)
+}
+
+impl<'a> Driver<'a> {
+    fn new(
+        model: &'a mut Model,
+        plan: &'a RunPlan,
+        linear: &'a mut dyn LinearSolver,
+        nonlinear: &'a mut dyn NonlinearSolver,
+        observers: &'a mut [Box<dyn Observer>],
+    ) -> Self {
+        let first = plan.steps.first().expect("a run plan has at least one step");
+        let tangent = TangentSwitch::start(plan.tangent, model);
+        Driver {
+            tangent,
+            tracker: InterfaceTracker::new(model, &plan.interfaces),
+            summary: initial_summary(model, plan, linear.factor_nnz()),
+            breakpoints: breakpoints(model, plan),
+            path: PathState::default(),
+            t_end: plan.steps.last().map_or(0.0, |s| s.end_time),
+            load: LoadControl::new(&first.incrementation, plan.start_predictor),
+            crossing: None,
+            mass: None,
+            unbalanced_start: None,
+            wall: Instant::now(),
+            earlier: EarlierParts::default(),
+            last_checkpoint: (Instant::now(), 0),
+            model_ahead_of_record: false,
+            model,
+            plan,
+            linear,
+            nonlinear,
+            observers,
         }
-        step_start = plan.steps[si].end_time;
-        driver.crossing = None;
     }
-    driver.finish(ending, wall)
+
+    /// Runs the steps from step `first` (starting at `step_start`; `resumed`: the step is
+    /// under way, its increment size and output count carry on) to the end, then finishes.
+    fn run_from(mut self, first: usize, mut step_start: f64, resumed: bool) -> Result<RunSummary> {
+        let mut ending = None;
+        for si in first..self.plan.steps.len() {
+            if let Some(end) = self.run_step(si, step_start, resumed && si == first)? {
+                ending = Some(end);
+                break;
+            }
+            step_start = self.plan.steps[si].end_time;
+            self.crossing = None;
+        }
+        if ending.is_some() {
+            self.write_checkpoint(ending.as_ref())?;
+        } else {
+            self.remove_checkpoint()?;
+        }
+        self.finish(ending)
+    }
 }
 
 fn initial_summary(model: &Model, plan: &RunPlan, factor_nnz: usize) -> RunSummary {
@@ -255,21 +300,12 @@ fn breakpoints(model: &Model, plan: &RunPlan) -> Vec<f64> {
         .collect()
 }
 
-struct Driver<'a> {
-    model: &'a mut Model,
-    plan: &'a RunPlan,
-    linear: &'a mut dyn LinearSolver,
-    nonlinear: &'a mut dyn NonlinearSolver,
-    observers: &'a mut [Box<dyn Observer>],
-    tracker: InterfaceTracker,
-    summary: RunSummary,
-    breakpoints: Vec<f64>,
-    /// Pseudo-time of the committed state, and of the end of the run.
+/// The driver's state that carries from one increment to the next, beside the load control,
+/// the tangent switch, the interfaces' records and the summary: a checkpoint holds it whole.
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
+struct PathState {
+    /// Pseudo-time of the committed state.
     t: f64,
-    t_end: f64,
-    load: LoadControl,
-    /// A crossing in progress.
-    crossing: Option<Box<dyn Crossing>>,
     /// The last converged increment (free dofs, dt), kept through cuts to start arc length.
     last_converged: Option<PreviousIncrement>,
     /// Set when arc length had to hand back to load control; cleared by the next commit.
@@ -293,17 +329,47 @@ struct Driver<'a> {
     since_output: usize,
     /// The largest displacement norm committed so far (the scale of round-off in increments).
     largest_displacement: f64,
-    /// The damped flow's drag matrix on the pattern (made at the first damped snap): the
-    /// unit-density mass, or the initial stiffness ([`FlowDamping`]).
-    mass: Option<Vec<f64>>,
     /// Damped-flow snaps that ended where their steps stalled near rest, and the largest
     /// residual over the test they ended at (see [`crate::nonlinear::damped_flow::STALLED_REST_FACTOR`]).
     stalled_snaps: (usize, f64),
+    /// The step under way and the time it started at.
+    step: usize,
+    step_start: f64,
+}
+
+struct Driver<'a> {
+    model: &'a mut Model,
+    plan: &'a RunPlan,
+    linear: &'a mut dyn LinearSolver,
+    nonlinear: &'a mut dyn NonlinearSolver,
+    observers: &'a mut [Box<dyn Observer>],
+    /// Where the path is, and what it counts (checkpointed whole).
+    path: PathState,
+    tracker: InterfaceTracker,
+    summary: RunSummary,
+    breakpoints: Vec<f64>,
+    /// Pseudo-time of the end of the run.
+    t_end: f64,
+    load: LoadControl,
+    /// A crossing in progress.
+    crossing: Option<Box<dyn Crossing>>,
+    /// The damped flow's drag matrix on the pattern (made at the first damped snap): the
+    /// unit-density mass, or the initial stiffness ([`FlowDamping`]).
+    mass: Option<Vec<f64>>,
     /// Which material tangent the solvers see, switched after failures.
     tangent: TangentSwitch,
     /// Until the first commit: the initial state's residual norm and the solver's residual
     /// test, when that fails (see the module documentation, "An unbalanced start").
     unbalanced_start: Option<(f64, f64)>,
+    /// When this process started on the run.
+    wall: Instant,
+    /// What the parts of the run before its resumption (if any) counted outside the summary.
+    earlier: EarlierParts,
+    /// When the last checkpoint was written, and the increments committed then.
+    last_checkpoint: (Instant, usize),
+    /// Set when a damped-flow snap failed after committing some of its steps to the model:
+    /// the model's committed state is then not the one the record (history, summary) ends at.
+    model_ahead_of_record: bool,
 }
 
 /// What to do after handling an attempt.
@@ -349,33 +415,41 @@ impl Driver<'_> {
     }
 
     fn scales(&self) -> ReferenceScales {
-        let (sum, count) = self.force_sum;
+        let (sum, count) = self.path.force_sum;
         let mean = if count == 0 { 0.0 } else { sum / count as f64 };
         ReferenceScales { displacement: norm(&self.model.displacement), force: mean }
     }
 
     /// Runs step `si` from `step_start`; Some(ending) when the run cannot or must not go on.
-    fn run_step(&mut self, si: usize, step_start: f64) -> Result<Option<Ending>> {
+    /// `resumed`: the step is under way (a run resumed from a checkpoint), so the increment
+    /// size, the output count and the crawl state carry on.
+    fn run_step(&mut self, si: usize, step_start: f64, resumed: bool) -> Result<Option<Ending>> {
         let step = &self.plan.steps[si];
-        self.load.start_step(&step.incrementation);
-        self.since_output = 0;
-        self.crawling = false;
-        while self.t < step.end_time - 1e-12 * self.t_end {
-            if self.plan.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::Relaxed)) {
+        (self.path.step, self.path.step_start) = (si, step_start);
+        if !resumed {
+            self.load.start_step(&step.incrementation);
+            self.path.since_output = 0;
+            self.path.crawling = false;
+        }
+        while self.path.t < step.end_time - 1e-12 * self.t_end {
+            if self.plan.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::Relaxed))
+                || self.plan.stop_after_increments.is_some_and(|n| self.summary.increments >= n)
+            {
                 return Ok(Some(Ending::Interrupted));
             }
+            self.checkpoint_if_due()?;
             let breakpoints = std::mem::take(&mut self.breakpoints);
             let window = StepWindow {
-                t: self.t,
+                t: self.path.t,
                 step_start,
                 step_end: step.end_time,
                 t_end: self.t_end,
                 breakpoints: &breakpoints,
             };
-            if self.crossing.is_none() && self.small_commits_in_a_row >= CRAWL_COMMITS {
+            if self.crossing.is_none() && self.path.small_commits_in_a_row >= CRAWL_COMMITS {
                 self.breakpoints = breakpoints;
-                self.small_commits_in_a_row = 0;
-                let reason = format!("crawling at t = {:.6} (dt = {:.2e})", self.t, self.load.dt);
+                self.path.small_commits_in_a_row = 0;
+                let reason = format!("crawling at t = {:.6} (dt = {:.2e})", self.path.t, self.load.dt);
                 match self.crawl_snap(si, &reason)? {
                     Flow::Continue => continue,
                     Flow::StepDone => break,
@@ -408,8 +482,8 @@ impl Driver<'_> {
                 }
                 Attempt::OutsideWindow => {
                     self.crossing = None;
-                    self.arc_blocked = true;
-                    self.load.after_detour(step.end_time - self.t);
+                    self.path.arc_blocked = true;
+                    self.load.after_detour(step.end_time - self.path.t);
                     Flow::Continue
                 }
             };
@@ -430,17 +504,17 @@ impl Driver<'_> {
     fn failed(&mut self, si: usize, failure: &IncrementFailure) -> Result<Flow> {
         if let IncrementFailure::Error(CoreError::LawFailure { law, interface, point, message, .. }) = failure {
             let entry =
-                self.law_failures.entry((law.clone(), interface.clone(), message.clone())).or_insert((0, *point));
+                self.path.law_failures.entry((law.clone(), interface.clone(), message.clone())).or_insert((0, *point));
             entry.0 += 1;
         }
         self.model.rollback();
         if let Some(what) = self.tangent.after_failure(self.model, failure) {
-            let text = format!("{}: {what} at t = {:.6}", self.plan.steps[si].name, self.t);
+            let text = format!("{}: {what} at t = {:.6}", self.plan.steps[si].name, self.path.t);
             self.observers.iter_mut().for_each(|o| o.message(&text));
         }
         self.load.forget();
         self.summary.cut_increments += 1;
-        self.cuts_since_commit += 1;
+        self.path.cuts_since_commit += 1;
         if let Some(arc) = self.crossing.as_mut() {
             let cut = arc.cut(failure);
             return self.after_cut(si, cut, failure);
@@ -456,18 +530,19 @@ impl Driver<'_> {
             );
             return self.snap(si, &reason);
         }
-        let continuation = self.plan.continuation.filter(|c| self.cuts_since_commit >= c.after_cuts);
+        let continuation = self.plan.continuation.filter(|c| self.path.cuts_since_commit >= c.after_cuts);
         if let Some(continuation) = continuation
-            && !self.arc_blocked
+            && !self.path.arc_blocked
         {
-            let resume_after = self.load.first_failed_target.unwrap_or(self.t);
-            self.crossing = self.last_converged.clone().and_then(|previous| continuation.start(previous, resume_after));
+            let resume_after = self.load.first_failed_target.unwrap_or(self.path.t);
+            self.crossing =
+                self.path.last_converged.clone().and_then(|previous| continuation.start(previous, resume_after));
             if self.crossing.is_some() {
                 return Ok(Flow::Continue);
             }
         }
-        if self.crawling && self.crossing.is_none() {
-            let reason = format!("still crawling at t = {:.6} ({failure})", self.t);
+        if self.path.crawling && self.crossing.is_none() {
+            let reason = format!("still crawling at t = {:.6} ({failure})", self.path.t);
             return self.crawl_snap(si, &reason);
         }
         let cut = self.load.cut(failure);
@@ -478,7 +553,7 @@ impl Driver<'_> {
     /// as still crawling after it unless it reached a breakpoint.
     fn crawl_snap(&mut self, si: usize, reason: &str) -> Result<Flow> {
         let flow = self.snap_over(si, reason, self.plan.steps[si].incrementation.initial)?;
-        self.crawling = matches!(flow, Flow::Continue) && !self.at_breakpoint(self.t);
+        self.path.crawling = matches!(flow, Flow::Continue) && !self.at_breakpoint(self.path.t);
         Ok(flow)
     }
 
@@ -490,7 +565,7 @@ impl Driver<'_> {
     ) -> Result<Flow> {
         match cut {
             Ok(what) => {
-                let text = format!("{}: {what} at t = {:.4} ({failure})", self.plan.steps[si].name, self.t);
+                let text = format!("{}: {what} at t = {:.4} ({failure})", self.plan.steps[si].name, self.path.t);
                 for o in self.observers.iter_mut() {
                     o.message(&text);
                 }
@@ -507,7 +582,7 @@ impl Driver<'_> {
     /// initial increment ahead, as past a crawl.
     fn snap(&mut self, si: usize, reason: &str) -> Result<Flow> {
         let incrementation = &self.plan.steps[si].incrementation;
-        let stuck = self.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS;
+        let stuck = self.path.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS;
         let dt = if stuck { incrementation.initial } else { incrementation.minimum };
         self.snap_over(si, reason, dt)
     }
@@ -516,21 +591,21 @@ impl Driver<'_> {
     /// breakpoint) and commits it, or stops with `reason` and why settling failed. Errors are
     /// those of committing (writing the outputs).
     fn snap_over(&mut self, si: usize, reason: &str, dt: f64) -> Result<Flow> {
-        if self.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS && dt <= self.plan.steps[si].incrementation.minimum {
+        if self.path.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS && dt <= self.plan.steps[si].incrementation.minimum {
             return Ok(Flow::Stop(format!(
                 "{reason}; {MAX_SNAPS_WITHOUT_PROGRESS} snaps in a row found no path onward from t = {:.6}",
-                self.t
+                self.path.t
             )));
         }
         let step = &self.plan.steps[si];
         self.crossing = None;
         self.model.rollback();
         self.load.set_increment(dt);
-        let text = format!("{}: {reason}; snapping from t = {:.6}", step.name, self.t);
+        let text = format!("{}: {reason}; snapping from t = {:.6}", step.name, self.path.t);
         self.observers.iter_mut().for_each(|o| o.message(&text));
         let window = StepWindow {
-            t: self.t,
-            step_start: self.t,
+            t: self.path.t,
+            step_start: self.path.t,
             step_end: step.end_time,
             t_end: self.t_end,
             breakpoints: &self.breakpoints,
@@ -559,12 +634,15 @@ impl Driver<'_> {
         match settled {
             Ok((report, _)) => {
                 // a snap past the minimum increment moved the load on: progress
-                self.snaps_in_a_row = if dt > step.incrementation.minimum { 0 } else { self.snaps_in_a_row + 1 };
+                self.path.snaps_in_a_row =
+                    if dt > step.incrementation.minimum { 0 } else { self.path.snaps_in_a_row + 1 };
                 self.summary.snaps += 1;
                 self.converged(si, report, Via::Settling)
             }
             Err(e) => {
                 self.model.rollback();
+                // the flow's committed steps are the model's, not the record's
+                self.model_ahead_of_record |= damped;
                 // a law that fails the same way while settling is said once
                 let same = matches!(&e, IncrementFailure::Error(CoreError::LawFailure { message, .. }) if reason.contains(message.as_str()));
                 let why = match (same, damped) {
@@ -643,8 +721,8 @@ impl Driver<'_> {
                 }
                 if let Some(ratio) = f.stalled_at_residual_ratio {
                     text += &format!("; its steps stalled near rest, ended at {ratio:.1} times the residual test");
-                    self.stalled_snaps.0 += 1;
-                    self.stalled_snaps.1 = self.stalled_snaps.1.max(ratio);
+                    self.path.stalled_snaps.0 += 1;
+                    self.path.stalled_snaps.1 = self.path.stalled_snaps.1.max(ratio);
                 }
                 (Ok((f.costs, text)), true, f.failed_solve_seconds)
             }
@@ -663,19 +741,19 @@ impl Driver<'_> {
     /// contact pressure), and a snap is costlier than the crossing's step.
     fn jump(&self, target: f64, du: &[f64]) -> Option<&'static str> {
         // arc length had to hand back to load control: load control goes on
-        if self.plan.continuation.is_some() && self.arc_blocked {
+        if self.plan.continuation.is_some() && self.path.arc_blocked {
             return None;
         }
-        let previous = self.last_converged.as_ref().filter(|p| p.dt > 0.0 && target > self.t)?;
+        let previous = self.path.last_converged.as_ref().filter(|p| p.dt > 0.0 && target > self.path.t)?;
         let (moved, moved_before) = (norm(du), norm(&previous.du));
-        let predicted = moved_before * (target - self.t) / previous.dt;
+        let predicted = moved_before * (target - self.path.t) / previous.dt;
         // round-off in a state that no longer moves (a separated body) is no jump
-        let noise = self.nonlinear.settings().tol_displacement * self.largest_displacement;
+        let noise = self.nonlinear.settings().tol_displacement * self.path.largest_displacement;
         let continuation = self.plan.continuation.is_some();
         let too_far =
-            (continuation || !self.at_breakpoint(self.t)) && predicted > 0.0 && moved > JUMP_RATIO * predicted;
+            (continuation || !self.at_breakpoint(self.path.t)) && predicted > 0.0 && moved > JUMP_RATIO * predicted;
         let turned_back =
-            continuation && moved_before > noise && dot(du, &previous.du) < 0.0 && !self.at_breakpoint(self.t);
+            continuation && moved_before > noise && dot(du, &previous.du) < 0.0 && !self.at_breakpoint(self.path.t);
         if !(moved > noise && (too_far || turned_back)) {
             return None;
         }
@@ -693,8 +771,8 @@ impl Driver<'_> {
         };
         self.model.rollback();
         self.summary.cut_increments += 1;
-        self.cuts_since_commit += 1;
-        self.crossing = self.last_converged.clone().and_then(|previous| continuation.start(previous, target));
+        self.path.cuts_since_commit += 1;
+        self.crossing = self.path.last_converged.clone().and_then(|previous| continuation.start(previous, target));
         let next = if self.crossing.is_some() { "crossing the limit point" } else { "load control goes on" };
         let text = format!("the increment to t = {target:.6} jumped ({why}): rolled back, {next}");
         self.observers.iter_mut().for_each(|o| o.message(&text));
@@ -724,49 +802,49 @@ impl Driver<'_> {
         {
             return self.after_jump(si, target, why);
         }
-        self.force_sum.0 += NonlinearProblem::force_norm(&*self.model);
-        self.force_sum.1 += 1;
+        self.path.force_sum.0 += NonlinearProblem::force_norm(&*self.model);
+        self.path.force_sum.1 += 1;
         let reversal = self.at_breakpoint(target);
         if via == Via::Settling {
             // a snap's displacement is no rate to extrapolate or to start arc length from
-            self.last_converged = None;
+            self.path.last_converged = None;
             self.load.remember(du, 0.0, true);
             self.load.set_increment(step.incrementation.initial);
         } else {
-            self.snaps_in_a_row = 0;
-            self.crawling = false;
-            let small = target - self.t < CRAWL_FRACTION * step.incrementation.maximum;
-            self.small_commits_in_a_row =
-                if via == Via::LoadControl && small { self.small_commits_in_a_row + 1 } else { 0 };
-            self.last_converged = Some(PreviousIncrement { du: du.clone(), dt: target - self.t });
-            self.load.remember(du, target - self.t, reversal);
+            self.path.snaps_in_a_row = 0;
+            self.path.crawling = false;
+            let small = target - self.path.t < CRAWL_FRACTION * step.incrementation.maximum;
+            self.path.small_commits_in_a_row =
+                if via == Via::LoadControl && small { self.path.small_commits_in_a_row + 1 } else { 0 };
+            self.path.last_converged = Some(PreviousIncrement { du: du.clone(), dt: target - self.path.t });
+            self.load.remember(du, target - self.path.t, reversal);
         }
-        self.arc_blocked = false;
+        self.path.arc_blocked = false;
         if resume {
             // past the point where load control failed, moving forward again
             self.crossing = None;
-            self.load.set_increment(target - self.t);
+            self.load.set_increment(target - self.path.t);
         }
         self.model.commit();
         self.unbalanced_start = None;
         self.tangent.committed();
-        self.largest_displacement = self.largest_displacement.max(norm(&self.model.displacement));
-        self.t = target;
+        self.path.largest_displacement = self.path.largest_displacement.max(norm(&self.model.displacement));
+        self.path.t = target;
         self.add_report(&report);
         let plastic_dissipation = self.model.dissipation();
         let context = CommitContext {
-            cuts_since_commit: self.cuts_since_commit,
+            cuts_since_commit: self.path.cuts_since_commit,
             limit_point,
             by_arc_length,
             plastic_dissipation,
         };
         let (events, separated) = self.tracker.update(self.model, context, step.until_separated);
-        self.cuts_since_commit = 0;
-        self.since_output += 1;
-        let at_end = self.t >= step.end_time - 1e-12 * self.t_end;
-        let frame_due = (step.output_every > 0 && self.since_output >= step.output_every) || at_end || separated;
+        self.path.cuts_since_commit = 0;
+        self.path.since_output += 1;
+        let at_end = self.path.t >= step.end_time - 1e-12 * self.t_end;
+        let frame_due = (step.output_every > 0 && self.path.since_output >= step.output_every) || at_end || separated;
         if frame_due {
-            self.since_output = 0;
+            self.path.since_output = 0;
         }
         self.notify(si, &report, frame_due, plastic_dissipation, &events)?;
         if report.iterations <= step.incrementation.easy_iterations && self.crossing.is_none() && !resume {
@@ -800,10 +878,10 @@ impl Driver<'_> {
             increment: self.summary.increments,
             iterations: report.iterations,
             frame_due,
-            fraction_done: if self.t_end > 0.0 { self.t / self.t_end } else { 1.0 },
+            fraction_done: if self.t_end > 0.0 { self.path.t / self.t_end } else { 1.0 },
             description: format!(
                 "{}: t = {:.4} dt = {:.2e}, {} Newton its, |r| = {last:.2e}",
-                self.plan.steps[si].name, self.t, self.load.dt, report.iterations
+                self.plan.steps[si].name, self.path.t, self.load.dt, report.iterations
             ),
             plastic_dissipation,
         };
@@ -816,15 +894,12 @@ impl Driver<'_> {
         Ok(())
     }
 
-    fn finish(mut self, ending: Option<Ending>, wall: Instant) -> Result<RunSummary> {
-        let (events, warnings) = self.tracker.finish(self.t);
+    fn finish(mut self, ending: Option<Ending>) -> Result<RunSummary> {
+        let (events, warnings) = self.tracker.finish(self.path.t);
+        self.count_totals();
         let s = &mut self.summary;
-        s.final_time = self.t;
-        s.double_precision_refactorizations = self.linear.precision_fallbacks();
-        s.tangent_switches = self.tangent.switches;
         s.plastic_dissipation = self.model.dissipation();
         s.max_equivalent_plastic_strain = self.model.max_material_output("equivalent_plastic_strain");
-        s.wall_seconds = wall.elapsed().as_secs_f64();
         (s.status, s.message) = match ending {
             None => ("completed".into(), None),
             Some(Ending::Failed(message)) => ("failed".into(), Some(message)),
@@ -832,18 +907,18 @@ impl Driver<'_> {
                 "interrupted".into(),
                 Some(format!(
                     "interrupted at t = {}; every committed increment is in history.csv and the VTK series",
-                    self.t
+                    self.path.t
                 )),
             ),
         };
         s.warnings.extend(warnings);
-        if self.stalled_snaps.0 > 0 {
+        if self.path.stalled_snaps.0 > 0 {
             s.warnings.push(format!(
                 "{} damped-flow snap(s) ended where their steps stalled near rest, at up to {:.1} times the residual test (messages.log: 'stalled near rest')",
-                self.stalled_snaps.0, self.stalled_snaps.1
+                self.path.stalled_snaps.0, self.path.stalled_snaps.1
             ));
         }
-        for ((law, interface, message), (times, point)) in &self.law_failures {
+        for ((law, interface, message), (times, point)) in &self.path.law_failures {
             s.warnings.push(format!(
                 "law '{law}' on interface '{interface}' failed {times} time(s), first at point {point}: {message}"
             ));

@@ -26,7 +26,7 @@ pub enum StartPredictor {
 }
 
 /// Where the next attempt starts.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 enum Predictor {
     /// The committed state.
     None,
@@ -34,6 +34,22 @@ enum Predictor {
     Tangent,
     /// The last converged increment (free-dof displacement increment, dt), scaled.
     Extrapolate(Vec<f64>, f64),
+}
+
+/// The state of a [`LoadControl`] a checkpoint keeps ([`LoadControl::saved`]).
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct LoadControlState {
+    dt: f64,
+    predictor: Predictor,
+    first_failed_target: Option<f64>,
+}
+
+impl LoadControlState {
+    /// The state to go on from after a failure: increment `dt`, no failed target (the
+    /// predictor was already forgotten by the failure).
+    pub fn restart_at(&mut self, dt: f64) {
+        (self.dt, self.first_failed_target) = (dt, None);
+    }
 }
 
 pub struct LoadControl {
@@ -118,6 +134,23 @@ impl LoadControl {
     /// Sets the next increment, kept within the incrementation's bounds.
     pub fn set_increment(&mut self, dt: f64) {
         self.dt = dt.clamp(self.incrementation.minimum, self.incrementation.maximum);
+    }
+
+    /// What a checkpoint keeps: the next increment, the predictor and the failed target.
+    pub fn saved(&self) -> LoadControlState {
+        LoadControlState {
+            dt: self.dt,
+            predictor: self.predictor.clone(),
+            first_failed_target: self.first_failed_target,
+        }
+    }
+
+    /// Goes on from a checkpoint with this control's incrementation (the resumed run's: its
+    /// bounds may have changed) and the saved increment, kept within them.
+    pub fn restore(&mut self, saved: LoadControlState) {
+        self.predictor = saved.predictor;
+        self.first_failed_target = saved.first_failed_target;
+        self.set_increment(saved.dt);
     }
 
     /// The increment to go on with after a path-following detour that had to stop `remaining`

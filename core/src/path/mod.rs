@@ -15,7 +15,7 @@ pub mod tangent_choice;
 
 pub use arc_length_control::ArcLengthControl;
 pub use dissipation_control::DissipationControl;
-pub use driver::{Continuation, ContinuationMethod, RunPlan, SnapMethod, run_steps};
+pub use driver::{Checkpoint, Continuation, ContinuationMethod, RunPlan, SnapMethod, resume_steps, run_steps};
 pub use load_control::{LoadControl, StartPredictor};
 pub use step::{Incrementation, StepPlan};
 pub use tangent_choice::TangentChoice;

@@ -18,7 +18,7 @@ use crate::model::Model;
 use crate::nonlinear::IncrementFailure;
 
 /// Which material tangent the solvers see.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum TangentChoice {
     /// The consistent tangent throughout.
     Consistent,
@@ -31,7 +31,7 @@ pub enum TangentChoice {
 }
 
 /// The tangent switch of a run.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct TangentSwitch {
     choice: TangentChoice,
     /// Set by a switch, cleared by a commit.
@@ -75,6 +75,17 @@ impl TangentSwitch {
         self.switched_since_commit = true;
         self.switches += 1;
         Some(if stabilize { "switched to the stabilized tangent" } else { "switched to the consistent tangent" }.into())
+    }
+
+    /// The switch of a run resumed from a checkpoint with `choice`: where the choice is the
+    /// checkpointed run's, the model gets the tangent it had then (`stabilized`) and the
+    /// switch goes on as it was; otherwise the new choice starts, counting the earlier switches.
+    pub fn resumed(self, choice: TangentChoice, model: &mut Model, stabilized: bool) -> Self {
+        if choice != self.choice {
+            return Self { switches: self.switches, ..Self::start(choice, model) };
+        }
+        model.stabilize_tangent(stabilized);
+        self
     }
 
     /// A committed increment: the next failure may switch again.

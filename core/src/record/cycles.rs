@@ -8,11 +8,11 @@ use super::{CommittedIncrement, Observer};
 use crate::error::Result;
 use crate::model::Model;
 use crate::output::write_atomically;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// One committed state of an interface.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct InterfaceSample {
     pub approach: f64,
     /// Positive compressive.
@@ -25,7 +25,7 @@ pub struct InterfaceSample {
 }
 
 /// The key numbers of one load cycle.
-#[derive(Debug, Clone, Serialize, Default, PartialEq)]
+#[derive(Debug, Clone, Serialize, Deserialize, Default, PartialEq)]
 pub struct CycleSummary {
     /// 1-based.
     pub cycle: usize,
@@ -44,7 +44,7 @@ pub struct CycleSummary {
 }
 
 /// The resistance at one force level on loading and on unloading of the first cycle.
-#[derive(Debug, Clone, Serialize, Default, PartialEq)]
+#[derive(Debug, Clone, Serialize, Deserialize, Default, PartialEq)]
 pub struct ResistanceAtForce {
     /// The level as a fraction of the cycle's maximum force.
     pub fraction_of_max_force: f64,

@@ -1,6 +1,6 @@
 //! `events.csv`: one row per interface event, flushed as it happens.
 
-use super::{CommittedIncrement, InterfaceEvent, Observer};
+use super::{CommittedIncrement, InterfaceEvent, Observer, ObserverState, RunSummary};
 use crate::error::Result;
 use crate::model::Model;
 use crate::output::HistoryWriter;
@@ -11,7 +11,7 @@ pub struct EventsRecorder {
 }
 
 impl EventsRecorder {
-    pub fn create(path: &Path) -> Result<Self> {
+    pub fn new(path: &Path) -> Self {
         let columns = [
             "time",
             "approach",
@@ -23,11 +23,23 @@ impl EventsRecorder {
             "force_after",
             "cuts_before",
         ];
-        Ok(Self { writer: HistoryWriter::create(path, columns.iter().map(|s| s.to_string()).collect())? })
+        Self { writer: HistoryWriter::new(path, columns.iter().map(|s| s.to_string()).collect()) }
     }
 }
 
 impl Observer for EventsRecorder {
+    fn started(&mut self, _model: &Model, _summary: &RunSummary) -> Result<()> {
+        self.writer.start()
+    }
+
+    fn saved_state(&mut self) -> Result<Option<ObserverState>> {
+        self.writer.saved_state().map(Some)
+    }
+
+    fn resumed(&mut self, _model: &Model, _summary: &RunSummary, saved: &[ObserverState]) -> Result<()> {
+        self.writer.resume(saved)
+    }
+
     fn committed(&mut self, _model: &Model, _increment: &CommittedIncrement) -> Result<()> {
         Ok(())
     }

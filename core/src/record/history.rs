@@ -2,7 +2,7 @@
 //! per boundary group, mean displacements per loaded group, plastic dissipation, and each
 //! interface's observables.
 
-use super::{CommittedIncrement, Observer};
+use super::{CommittedIncrement, Observer, ObserverState, RunSummary};
 use crate::element::Kinematics;
 use crate::error::Result;
 use crate::model::Model;
@@ -17,14 +17,14 @@ pub struct HistoryRecorder {
 }
 
 impl HistoryRecorder {
-    /// Creates `path` with the header for `model`; reactions are summed over the nodes of each
+    /// Writes `path` (from the run's start) with the header for `model`; reactions are summed over the nodes of each
     /// of `reaction_groups`, displacements averaged over those of each of `displacement_groups`.
-    pub fn create(
+    pub fn new(
         path: &Path,
         model: &Model,
         reaction_groups: Vec<(String, Vec<usize>)>,
         displacement_groups: Vec<(String, Vec<usize>)>,
-    ) -> Result<Self> {
+    ) -> Self {
         let dpn = model.dofs_per_node();
         let component = |k: usize| {
             if model.kinematics == Kinematics::Axisymmetric { ["r", "z"][k] } else { ["x", "y", "z"][k] }
@@ -47,11 +47,23 @@ impl HistoryRecorder {
                 columns.extend(o.columns().into_iter().map(|(name, _)| name.to_string()));
             }
         }
-        Ok(Self { writer: HistoryWriter::create(path, columns)?, reaction_groups, displacement_groups })
+        Self { writer: HistoryWriter::new(path, columns), reaction_groups, displacement_groups }
     }
 }
 
 impl Observer for HistoryRecorder {
+    fn started(&mut self, _model: &Model, _summary: &RunSummary) -> Result<()> {
+        self.writer.start()
+    }
+
+    fn saved_state(&mut self) -> Result<Option<ObserverState>> {
+        self.writer.saved_state().map(Some)
+    }
+
+    fn resumed(&mut self, _model: &Model, _summary: &RunSummary, saved: &[ObserverState]) -> Result<()> {
+        self.writer.resume(saved)
+    }
+
     fn committed(&mut self, model: &Model, increment: &CommittedIncrement) -> Result<()> {
         let mut row = vec![
             Value::Count(increment.step),

@@ -42,6 +42,7 @@ pub struct InterfaceInfo {
     pub max_viscous_share: f64,
 }
 
+#[derive(Clone, serde::Serialize, serde::Deserialize)]
 pub struct InterfaceTracker {
     summaries: Vec<InterfaceSummary>,
     observed: Vec<InterfaceObservables>,

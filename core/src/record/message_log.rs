@@ -5,7 +5,7 @@
 //! `.msg` files for the same reason): `tail -f` shows where the time goes while the run is
 //! still going, and an interrupted or failed run keeps the record up to its last line.
 
-use super::{CommittedIncrement, Observer, RunSummary};
+use super::{CommittedIncrement, Observer, ObserverState, RunSummary};
 use crate::error::{CoreError, Result};
 use crate::model::Model;
 use std::fs::File;
@@ -15,27 +15,48 @@ use std::time::Instant;
 
 pub struct MessageLog {
     path: PathBuf,
-    file: File,
+    /// Open from the run's start (or resumption) on.
+    file: Option<File>,
     started: Instant,
-    /// A write that failed inside [`Observer::message`] (which cannot return it), reported by
-    /// the next call that can.
+    /// Wall seconds of the run before it was resumed, added to the stamps.
+    earlier_seconds: f64,
     pending_error: Option<std::io::Error>,
 }
 
+/// The name of messages.log's record in a checkpoint.
+const NAME: &str = "messages.log";
+
+/// What a checkpoint keeps of the log: its length, and the stamp it had reached.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Saved {
+    length: u64,
+    seconds: f64,
+}
+
 impl MessageLog {
-    /// Creates (truncates) the log at `path`.
-    pub fn create(path: &Path) -> Result<Self> {
-        let file = File::create(path).map_err(|source| CoreError::Write { path: path.to_path_buf(), source })?;
-        Ok(Self { path: path.to_path_buf(), file, started: Instant::now(), pending_error: None })
+    /// A log written to `path` from the run's start on.
+    pub fn new(path: &Path) -> Self {
+        Self {
+            path: path.to_path_buf(),
+            file: None,
+            started: Instant::now(),
+            earlier_seconds: 0.0,
+            pending_error: None,
+        }
     }
 
-    /// Appends one stamped line in a single write (so a reader never sees half a line).
+    fn seconds(&self) -> f64 {
+        self.earlier_seconds + self.started.elapsed().as_secs_f64()
+    }
+
     fn line(&mut self, text: &str) -> std::io::Result<()> {
-        let stamped = format!("[{:>10.1} s] {text}\n", self.started.elapsed().as_secs_f64());
-        self.file.write_all(stamped.as_bytes())
+        let stamped = format!("[{:>10.1} s] {text}\n", self.seconds());
+        match self.file.as_mut() {
+            Some(file) => file.write_all(stamped.as_bytes()),
+            None => Err(std::io::Error::other("written to before the run started")),
+        }
     }
 
-    /// Appends a line, or returns the write error (or one left by an earlier message).
     fn write(&mut self, text: &str) -> Result<()> {
         let written = match self.pending_error.take() {
             Some(e) => Err(e),
@@ -43,14 +64,39 @@ impl MessageLog {
         };
         written.map_err(|source| CoreError::Write { path: self.path.clone(), source })
     }
+
+    fn io(&self, source: std::io::Error) -> CoreError {
+        CoreError::Write { path: self.path.clone(), source }
+    }
 }
 
 impl Observer for MessageLog {
     fn started(&mut self, _model: &Model, summary: &RunSummary) -> Result<()> {
+        self.file = Some(File::create(&self.path).map_err(|e| self.io(e))?);
         self.started = Instant::now();
         let text = format!(
             "run '{}': {} free dofs, {} nonzeros, {} in the factor",
             summary.case, summary.n_free_dofs, summary.nnz, summary.factor_nnz
+        );
+        self.write(&text)
+    }
+
+    fn saved_state(&mut self) -> Result<Option<ObserverState>> {
+        let file = self.file.as_ref().ok_or_else(|| self.io(std::io::Error::other("not open")))?;
+        let length = file.metadata().map_err(|e| self.io(e))?.len();
+        Ok(Some(ObserverState::new(NAME, &Saved { length, seconds: self.seconds() })))
+    }
+
+    /// Cuts the log back to the checkpoint and goes on with its stamps from there.
+    fn resumed(&mut self, _model: &Model, summary: &RunSummary, saved: &[ObserverState]) -> Result<()> {
+        let Saved { length, seconds } = ObserverState::find(saved, NAME)?;
+        let file = std::fs::OpenOptions::new().append(true).open(&self.path).map_err(|e| self.io(e))?;
+        file.set_len(length).map_err(|e| self.io(e))?;
+        self.file = Some(file);
+        (self.started, self.earlier_seconds) = (Instant::now(), seconds);
+        let text = format!(
+            "run '{}' resumed from its checkpoint at t = {} ({} increments): {} free dofs, {} in the factor",
+            summary.case, summary.final_time, summary.increments, summary.n_free_dofs, summary.factor_nnz
         );
         self.write(&text)
     }

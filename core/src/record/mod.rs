@@ -62,4 +62,45 @@ pub trait Observer {
     fn finished(&mut self, _model: &Model, _summary: &RunSummary) -> Result<()> {
         Ok(())
     }
+    /// What this observer needs to go on from the committed state it has recorded, for a
+    /// checkpoint (None: nothing, it keeps no record between commits).
+    fn saved_state(&mut self) -> Result<Option<ObserverState>> {
+        Ok(None)
+    }
+    /// The run goes on from a checkpoint (instead of [`Self::started`]): `saved` holds what
+    /// every observer of the checkpointed run saved ([`Self::saved_state`]), `summary` the run
+    /// so far. An observer with a record picks its own by name and cuts its output back to the
+    /// checkpoint, so what the interrupted run wrote after it is replaced; by default it starts
+    /// afresh.
+    fn resumed(&mut self, model: &Model, summary: &RunSummary, _saved: &[ObserverState]) -> Result<()> {
+        self.started(model, summary)
+    }
+}
+
+/// An observer's record in a checkpoint: its name and what it saved (JSON).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ObserverState {
+    pub name: String,
+    pub data: String,
+}
+
+impl ObserverState {
+    /// The record named `name` in `saved`, decoded; Err when it is missing or does not decode
+    /// (a checkpoint written with other output settings).
+    pub fn find<T: serde::de::DeserializeOwned>(saved: &[ObserverState], name: &str) -> Result<T> {
+        let missing = || {
+            crate::error::CoreError::Invalid(format!(
+                "the checkpoint has no record of the {name} output (was it written with other output settings?)"
+            ))
+        };
+        let record = saved.iter().find(|s| s.name == name).ok_or_else(missing)?;
+        serde_json::from_str(&record.data).map_err(|e| {
+            crate::error::CoreError::Invalid(format!("the checkpoint's record of the {name} output is unreadable: {e}"))
+        })
+    }
+
+    /// `data` as this observer's record named `name`.
+    pub fn new<T: serde::Serialize>(name: &str, data: &T) -> Self {
+        Self { name: name.into(), data: serde_json::to_string(data).expect("an observer's record serializes") }
+    }
 }

@@ -6,11 +6,11 @@ use super::{CommittedIncrement, Observer};
 use crate::error::Result;
 use crate::model::Model;
 use crate::output::write_atomically;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// What `summary.json` holds.
-#[derive(Debug, Clone, Serialize, Default)]
+#[derive(Debug, Clone, Serialize, Deserialize, Default)]
 pub struct RunSummary {
     pub case: String,
     /// The case's units as it states them (empty when it does not).
@@ -66,7 +66,7 @@ pub struct RunSummary {
 }
 
 /// Key numbers of one interface over the run (forces positive compressive).
-#[derive(Debug, Clone, Serialize, Default)]
+#[derive(Debug, Clone, Serialize, Deserialize, Default)]
 pub struct InterfaceSummary {
     pub name: String,
     /// "rigid-flat" or "cohesive".
@@ -120,7 +120,7 @@ pub struct InterfaceSummary {
 /// of the parabola approach(force) through the two committed increments before the turn and
 /// the one after (the approach is stationary there, so it is located to second order in the
 /// increment, the force to first order).
-#[derive(Debug, Clone, Copy, Serialize, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, Default, PartialEq)]
 pub struct Fold {
     /// Pseudo-time of the increment that turned.
     pub time: f64,

@@ -2,7 +2,7 @@
 //! (interface points), each listed in its `.pvd`, written when the step's output schedule says
 //! a frame is due.
 
-use super::{CommittedIncrement, Observer};
+use super::{CommittedIncrement, Observer, ObserverState, RunSummary};
 use crate::error::Result;
 use crate::model::Model;
 use crate::output::fields::{solid_cells, solid_fields};
@@ -53,8 +53,56 @@ impl VtkRecorder {
     }
 }
 
+/// The name of the VTK series' record in a checkpoint.
+const NAME: &str = "vtk series";
+
+/// What a checkpoint keeps of the series: the frames written, and each collection's list.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Saved {
+    frame: usize,
+    solid: PvdSeries,
+    points: Vec<PvdSeries>,
+}
+
 impl Observer for VtkRecorder {
     fn committed(&mut self, model: &Model, increment: &CommittedIncrement) -> Result<()> {
         if increment.frame_due { self.write_frame(model) } else { Ok(()) }
+    }
+
+    fn saved_state(&mut self) -> Result<Option<ObserverState>> {
+        let saved = Saved { frame: self.frame, solid: self.solid.clone(), points: self.points.clone() };
+        Ok(Some(ObserverState::new(NAME, &saved)))
+    }
+
+    /// Goes on from the checkpoint's frame: the collections list the frames written up to it
+    /// again, and the frames the interrupted run wrote after it are removed.
+    fn resumed(&mut self, model: &Model, _summary: &RunSummary, saved: &[ObserverState]) -> Result<()> {
+        let Saved { frame, solid, points } = ObserverState::find(saved, NAME)?;
+        if points.len() != self.points.len() {
+            return Err(crate::error::CoreError::Invalid(format!(
+                "the checkpoint's VTK series has {} interface collections, this model {}",
+                points.len(),
+                self.points.len()
+            )));
+        }
+        (self.frame, self.solid, self.points) = (frame, solid, points);
+        self.solid.write()?;
+        for series in &self.points {
+            series.write()?;
+        }
+        let stems: Vec<String> = std::iter::once(self.name.clone())
+            .chain(model.contributions.iter().map(|c| format!("{}_{}", self.name, c.name())))
+            .collect();
+        for later in frame.. {
+            let files: Vec<PathBuf> =
+                stems.iter().map(|stem| self.directory.join(format!("{stem}_{later:05}.vtu"))).collect();
+            if !files.iter().any(|f| f.exists()) {
+                break;
+            }
+            for f in files.iter().filter(|f| f.exists()) {
+                std::fs::remove_file(f).map_err(|source| crate::error::CoreError::Write { path: f.clone(), source })?;
+            }
+        }
+        Ok(())
     }
 }

@@ -1,0 +1,204 @@
+//! Checkpoints of a run ([`crate::checkpoint`] holds the file format): what the driver writes,
+//! when, and how a run takes a checkpoint up again ([`super::resume_steps`]).
+//!
+//! When: at the first commit at least [`crate::checkpoint::CheckpointPlan::interval`] after the last checkpoint,
+//! between increments (no crossing under way, no cut since the commit), and when the run fails
+//! or is stopped, from its last committed increment (except where a failed damped-flow snap
+//! left the model past it: the last checkpoint written stays). A completed run removes its
+//! checkpoint.
+//!
+//! What: everything the rest of the run depends on: the model's committed state
+//! ([`crate::model::ModelState`]); the driver's (time, step, the load control's increment and
+//! predictor, the crawl and snap counters, the interfaces' records, the summary so far); and
+//! each observer's record ([`crate::record::Observer::saved_state`]: how far its files had
+//! got). Only what is rebuilt the same way is left out: the pattern and the symbolic
+//! factorization, the damped flow's drag matrix, and the solver's numeric factor. So that a
+//! resumed run follows the same path as one that ran through, writing a checkpoint also makes
+//! the nonlinear solver start afresh ([`crate::nonlinear::NonlinearSolver::start_afresh`]: one
+//! more factorization); with a solver whose decisions do not depend on measured times, a run
+//! stopped at a checkpoint and resumed writes the same history.csv, to the last digit.
+//!
+//! A run that fails or is stopped in the middle of a crossing resumes under load control from
+//! the crossing's last commit; a failed run's checkpoint resumes with the increment size and the
+//! snap counter of a fresh step, as a run resumed with other solver settings needs.
+
+use super::{Driver, Ending, PathState};
+use crate::checkpoint::{self, ModelState};
+use crate::error::{CoreError, Result};
+use crate::path::load_control::LoadControlState;
+use crate::path::tangent_choice::TangentSwitch;
+use crate::record::{InterfaceTracker, ObserverState, RunSummary};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+use std::time::Instant;
+
+/// A run's committed state as a checkpoint file holds it.
+#[derive(Serialize, Deserialize)]
+pub struct Checkpoint {
+    /// What identifies the problem ([`crate::checkpoint::CheckpointPlan::fingerprint`]).
+    pub fingerprint: String,
+    pub model: ModelState,
+    driver: DriverState,
+    observers: Vec<ObserverState>,
+}
+
+impl Checkpoint {
+    /// Reads the checkpoint at `path`.
+    pub fn read(path: &Path) -> Result<Self> {
+        checkpoint::read(path)
+    }
+
+    /// The pseudo-time of the checkpointed state.
+    pub fn time(&self) -> f64 {
+        self.driver.path.t
+    }
+
+    /// The increments committed up to the checkpoint.
+    pub fn increments(&self) -> usize {
+        self.driver.summary.increments
+    }
+}
+
+/// The driver's part of a checkpoint: its state that carries from one increment to the next.
+#[derive(Serialize, Deserialize)]
+struct DriverState {
+    path: PathState,
+    load: LoadControlState,
+    tangent: TangentSwitch,
+    /// Whether the model's materials gave their stabilized tangent.
+    stabilized: bool,
+    tracker: InterfaceTracker,
+    /// The summary so far, its totals (wall seconds, precision fallbacks) counted to the
+    /// checkpoint.
+    summary: RunSummary,
+}
+
+/// Totals of the parts of a run before it was resumed that the summary takes from counters
+/// outside it (this process's wall clock, the linear solver's fallbacks).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct EarlierParts {
+    wall_seconds: f64,
+    precision_fallbacks: usize,
+}
+
+impl Driver<'_> {
+    /// Sets the summary's totals that come from counters outside it: the final time, wall
+    /// seconds, precision fallbacks and tangent switches, with the earlier parts of the run.
+    pub(super) fn count_totals(&mut self) {
+        let s = &mut self.summary;
+        s.final_time = self.path.t;
+        s.wall_seconds = self.earlier.wall_seconds + self.wall.elapsed().as_secs_f64();
+        s.double_precision_refactorizations = self.earlier.precision_fallbacks + self.linear.precision_fallbacks();
+        s.tangent_switches = self.tangent.switches;
+    }
+
+    /// Writes a checkpoint if the plan asks for one now (see the module documentation).
+    pub(super) fn checkpoint_if_due(&mut self) -> Result<()> {
+        let Some(plan) = &self.plan.checkpoint else { return Ok(()) };
+        let (when, increments) = self.last_checkpoint;
+        let due = self.summary.increments > increments
+            && self.crossing.is_none()
+            && self.path.cuts_since_commit == 0
+            && when.elapsed() >= plan.interval;
+        if due { self.write_checkpoint(None) } else { Ok(()) }
+    }
+
+    /// Writes the checkpoint of the committed state (the run ends with `ending`, if given)
+    /// and makes the nonlinear solver start afresh. Nothing is written before the first commit
+    /// (the run would start over from the same state), nor where a failed damped flow left the
+    /// model past the last recorded increment (the last checkpoint stays the one to resume).
+    pub(super) fn write_checkpoint(&mut self, ending: Option<&Ending>) -> Result<()> {
+        let Some(plan) = &self.plan.checkpoint else { return Ok(()) };
+        if self.summary.increments == 0 || self.model_ahead_of_record {
+            return Ok(());
+        }
+        let mut observers = Vec::new();
+        for o in self.observers.iter_mut() {
+            observers.extend(o.saved_state()?);
+        }
+        self.count_totals();
+        let mut driver = self.driver_state();
+        if matches!(ending, Some(Ending::Failed(_))) {
+            // resumed with other settings: go on as from a step's start
+            driver.load.restart_at(self.plan.steps[self.path.step].incrementation.initial);
+            (driver.path.cuts_since_commit, driver.path.snaps_in_a_row) = (0, 0);
+        }
+        let record =
+            Checkpoint { fingerprint: plan.fingerprint.clone(), model: self.model.saved_state(), driver, observers };
+        checkpoint::write(&plan.path, &record)?;
+        self.nonlinear.start_afresh();
+        self.last_checkpoint = (Instant::now(), self.summary.increments);
+        let text = format!(
+            "checkpoint at t = {:.6} ({} increments) written to '{}'",
+            self.path.t,
+            self.summary.increments,
+            plan.path.display()
+        );
+        self.observers.iter_mut().for_each(|o| o.message(&text));
+        Ok(())
+    }
+
+    /// Removes the checkpoint of a run that completed (nothing is left to resume).
+    pub(super) fn remove_checkpoint(&self) -> Result<()> {
+        let Some(plan) = &self.plan.checkpoint else { return Ok(()) };
+        match std::fs::remove_file(&plan.path) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                Err(CoreError::Write { path: plan.path.clone(), source: e })
+            }
+            _ => Ok(()),
+        }
+    }
+
+    fn driver_state(&self) -> DriverState {
+        DriverState {
+            path: self.path.clone(),
+            load: self.load.saved(),
+            tangent: self.tangent.clone(),
+            stabilized: self.model.tangent_stabilized(),
+            tracker: self.tracker.clone(),
+            summary: self.summary.clone(),
+        }
+    }
+
+    /// Takes up `checkpoint`: the model's state, the driver's, and the observers' (each told
+    /// with [`crate::record::Observer::resumed`]). Returns the step to go on with and its start.
+    pub(super) fn restore(&mut self, checkpoint: Checkpoint) -> Result<(usize, f64)> {
+        let Checkpoint { model, driver: d, observers, .. } = checkpoint;
+        let file = self.plan.checkpoint.as_ref().map(|p| p.path.clone()).unwrap_or_default();
+        let (step, step_start) = (d.path.step, d.path.step_start);
+        if step >= self.plan.steps.len() {
+            let message = format!("is at step {}, the run has {}", step + 1, self.plan.steps.len());
+            return Err(CoreError::Checkpoint { path: file, message });
+        }
+        self.model.restore_state(&model).map_err(|message| CoreError::Checkpoint { path: file, message })?;
+        self.load.start_step(&self.plan.steps[step].incrementation);
+        self.load.restore(d.load);
+        self.path = d.path;
+        self.tangent = d.tangent.resumed(self.plan.tangent, self.model, d.stabilized);
+        self.tracker = d.tracker;
+        self.earlier = EarlierParts {
+            wall_seconds: d.summary.wall_seconds,
+            precision_fallbacks: d.summary.double_precision_refactorizations,
+        };
+        self.summary = resumed_summary(d.summary, &self.summary);
+        self.unbalanced_start = None;
+        self.last_checkpoint = (Instant::now(), self.summary.increments);
+        for o in self.observers.iter_mut() {
+            o.resumed(self.model, &self.summary, &observers)?;
+        }
+        Ok((step, step_start))
+    }
+}
+
+/// The summary of a resumed run: the checkpointed one's counts, with what describes this
+/// process's setup (sizes of the factor, the snap method, the output folder) from `fresh`.
+fn resumed_summary(saved: RunSummary, fresh: &RunSummary) -> RunSummary {
+    RunSummary {
+        status: fresh.status.clone(),
+        message: None,
+        factor_nnz: fresh.factor_nnz,
+        snap_method: fresh.snap_method.clone(),
+        output_directory: fresh.output_directory.clone(),
+        ..saved
+    }
+}
