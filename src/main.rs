@@ -50,7 +50,8 @@ enum Command {
         #[arg(long)]
         resume: bool,
         /// Stop, as if interrupted (with a checkpoint), once this many increments are committed
-        /// in all: to split a long run into parts.
+        /// in all (at the first point between increments after that, no crossing under way): to
+        /// split a long run into parts.
         #[arg(long, value_name = "N")]
         stop_after: Option<usize>,
     },

@@ -106,6 +106,66 @@ fn aggregate_matches_the_members_and_a_rerun_resumes() {
     assert!(std::fs::read(out.join("ensemble.json")).unwrap() == before, "the resumed aggregate differs");
 }
 
+/// Ctrl-C stops the running members with their checkpoints; running the command again goes on
+/// with them from there (not from the start), and a resumed member ends where the same member
+/// run alone in one go ends (its maximum and pull-off forces to 1e-6: the stop's point and the
+/// solver's measured costs may move the path by round-off).
+#[test]
+fn a_stopped_ensemble_goes_on_with_its_members_from_their_checkpoints() {
+    let _turn = one_at_a_time();
+    let out = scratch("stopped");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_stiction"))
+        .args(ensemble_args(&out, &[]))
+        .current_dir(root())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let rows = |member: &str| {
+        std::fs::read_to_string(out.join(member).join("history.csv")).map_or(0, |t| t.lines().count().saturating_sub(1))
+    };
+    let start = std::time::Instant::now();
+    while rows("member-000") < 10 {
+        assert!(child.try_wait().unwrap().is_none(), "the ensemble ended before member 0 had 10 increments");
+        assert!(start.elapsed().as_secs() < 300, "member 0 had no 10 increments within 300 s");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    assert!(Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap().success());
+    let stopped_run = child.wait_with_output().unwrap();
+    assert_eq!(stopped_run.status.code(), Some(130), "{}", String::from_utf8_lossy(&stopped_run.stderr));
+    let stopped: Vec<String> =
+        (0..4).map(|i| format!("member-00{i}")).filter(|m| out.join(m).join("restart.bin").exists()).collect();
+    assert!(stopped.contains(&"member-000".to_string()), "member 0 was stopped with a checkpoint");
+    let rows_at_stop: Vec<usize> = stopped.iter().map(|m| rows(m)).collect();
+
+    let (code, stdout, stderr) = stiction(&ensemble_args(&out, &[]));
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(stdout.contains("4 of 4 members completed"), "{stdout}");
+    for (member, rows_then) in stopped.iter().zip(&rows_at_stop) {
+        let log = std::fs::read_to_string(out.join(member).join("messages.log")).unwrap();
+        assert!(log.contains("resumed from its checkpoint"), "{member} started over instead of going on");
+        assert!(!out.join(member).join("restart.bin").exists(), "{member} completed and removed its checkpoint");
+        assert!(rows(member) > *rows_then);
+    }
+    // member 0 alone, in one go, with the member's own values
+    let outcome = json(&out.join("member-000/member.json"));
+    let alone = scratch("stopped-member-alone");
+    let mut args: Vec<String> = ["run", CASE, "--quiet", "--out"].iter().map(|s| s.to_string()).collect();
+    args.push(alone.display().to_string());
+    for set in outcome["sets"].as_array().unwrap() {
+        args.extend(["--set".to_string(), set.as_str().unwrap().to_string()]);
+    }
+    args.extend(["--set".to_string(), "solver.threads=1".to_string()]);
+    let (code, _, stderr) = stiction(&args);
+    assert_eq!(code, Some(0), "{stderr}");
+    let (resumed, one_go) = (json(&out.join("member-000/summary.json")), json(&alone.join("summary.json")));
+    for quantity in ["max_force", "pull_off_force"] {
+        let (a, b) =
+            (resumed["interfaces"][0][quantity].as_f64().unwrap(), one_go["interfaces"][0][quantity].as_f64().unwrap());
+        assert!((a - b).abs() <= 1e-6 * b.abs(), "{quantity}: resumed {a}, in one go {b}");
+    }
+}
+
 #[test]
 fn a_failed_member_is_excluded_and_reported() {
     let _turn = one_at_a_time();

@@ -36,11 +36,12 @@ fn history_rows(out: &Path) -> usize {
     std::fs::read_to_string(out.join("history.csv")).map_or(0, |t| t.lines().count().saturating_sub(1))
 }
 
-/// Starts the quick rough-sphere case into `out` and waits until it has committed `rows`
-/// increments.
-fn start_quick_case(out: &Path, rows: usize) -> Child {
+/// Starts the quick rough-sphere case into `out` (with `extra` arguments) and waits until it
+/// has committed `rows` increments.
+fn start_quick_case(out: &Path, rows: usize, extra: &[&str]) -> Child {
     let mut child = stiction(&["run", "cases/ru-rough-sphere/rough-w6-quick.toml", "--quiet", "--out"])
         .arg(out)
+        .args(extra)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
@@ -98,7 +99,7 @@ fn summary(out: &Path) -> serde_json::Value {
 #[test]
 fn ctrl_c_finishes_the_increment_writes_an_interrupted_summary_and_exits_130() {
     let out = scratch("sigint");
-    let child = start_quick_case(&out, 8);
+    let child = start_quick_case(&out, 8, &[]);
     signal(&child, "INT");
     let result = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&result.stderr);
@@ -116,7 +117,7 @@ fn ctrl_c_finishes_the_increment_writes_an_interrupted_summary_and_exits_130() {
 #[test]
 fn sigkill_leaves_whole_files_and_a_summary_that_says_the_run_did_not_end() {
     let out = scratch("sigkill");
-    let mut child = start_quick_case(&out, 12);
+    let mut child = start_quick_case(&out, 12, &[]);
     signal(&child, "KILL");
     let status = child.wait().unwrap();
     assert_eq!(status.code(), None, "killed by a signal");
@@ -125,6 +126,43 @@ fn sigkill_leaves_whole_files_and_a_summary_that_says_the_run_did_not_end() {
     assert_eq!(s["status"], "running", "{s}");
     assert!(s["message"].as_str().unwrap().contains("has not ended (or was killed)"), "{s}");
     println!("SIGKILL after {rows} history rows: files whole");
+}
+
+/// A run killed at an arbitrary moment goes on with `--resume` from its last checkpoint (here
+/// written at every commit), cutting back what it wrote after it, and ends with the history of
+/// the same run done in one go, byte for byte (the solver's decisions are fixed-cost ones).
+#[test]
+fn a_killed_run_resumes_from_its_last_checkpoint_and_ends_as_one_that_ran_through() {
+    let settings = [
+        "--set",
+        "output.checkpoint_minutes=0",
+        "--set",
+        "solver.refactorization_cost_ratio=20",
+        "--set",
+        "solver.threads=1",
+    ];
+    let out = scratch("killed-and-resumed");
+    let mut child = start_quick_case(&out, 15, &settings);
+    signal(&child, "KILL");
+    child.wait().unwrap();
+    let (killed_rows, _) = check_files_whole(&out);
+    let case = "cases/ru-rough-sphere/rough-w6-quick.toml";
+    let resume: Vec<&str> =
+        ["run", case, "--quiet", "--resume", "--out", out.to_str().unwrap()].into_iter().chain(settings).collect();
+    let (code, stderr) = outcome(&mut stiction(&resume));
+    assert_eq!(code, Some(0), "{stderr}");
+    let straight = scratch("killed-and-resumed-straight");
+    let once: Vec<&str> =
+        ["run", case, "--quiet", "--out", straight.to_str().unwrap()].into_iter().chain(settings).collect();
+    let (code, stderr) = outcome(&mut stiction(&once));
+    assert_eq!(code, Some(0), "{stderr}");
+    for file in ["history.csv", "events.csv", "rough-w6-quick.pvd"] {
+        let (a, b) = (std::fs::read(straight.join(file)).unwrap(), std::fs::read(out.join(file)).unwrap());
+        assert!(a == b, "{file} of the killed and resumed run differs from the straight run's");
+    }
+    assert_eq!(summary(&out)["increments"], summary(&straight)["increments"]);
+    assert!(!out.join("restart.bin").exists(), "the completed run removed its checkpoint");
+    println!("SIGKILL after {killed_rows} history rows, resumed: the same history as one run");
 }
 
 #[test]

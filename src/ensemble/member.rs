@@ -50,18 +50,31 @@ pub fn earlier_completion(root: &Path, member: &Member) -> Option<MemberOutcome>
     (same && summary["status"] == "completed").then_some(outcome)
 }
 
-/// Runs `member` with `threads` threads (a pool of its own) into `<root>/<folder>`, replacing
-/// whatever an unfinished earlier attempt left there, and records the outcome in member.json.
+/// Whether an earlier invocation stopped `member` (Ctrl-C; the same varied values) and left the
+/// checkpoint of its run in `folder`, to go on from.
+fn stopped_with_checkpoint(folder: &Path, member: &Member) -> bool {
+    let outcome = std::fs::read_to_string(folder.join("member.json"))
+        .ok()
+        .and_then(|text| serde_json::from_str::<MemberOutcome>(&text).ok());
+    outcome.is_some_and(|o| o.sets == member.sets && o.status == "interrupted")
+        && folder.join(crate::resume::CHECKPOINT_FILE).exists()
+}
+
+/// Runs `member` with `threads` threads (a pool of its own) into `<root>/<folder>`: from the
+/// checkpoint an earlier invocation that was stopped left there, or afresh, replacing whatever
+/// an unfinished earlier attempt left; records the outcome in member.json.
 pub fn run_member(context: &MemberContext, member: &Member, threads: usize) -> MemberOutcome {
     let folder = context.root.join(&member.folder);
     let mut sets = context.sets.clone();
     sets.extend(member.sets.iter().cloned());
+    let resume = stopped_with_checkpoint(&folder, member);
     let result = (|| -> crate::error::Result<()> {
         let case = crate::case::load(&context.case_path, &sets)?;
         let options = RunOptions {
             out: Some(folder.clone()),
             progress: false,
-            overwrite: true,
+            overwrite: !resume,
+            resume,
             interrupt: context.interrupt.clone(),
             ..Default::default()
         };

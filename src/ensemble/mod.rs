@@ -10,7 +10,8 @@
 //!
 //! Every member is validated before any runs, so a bad varied value is an input error (exit 2)
 //! rather than a failed member. A member that fails later is reported and excluded; running the
-//! same command again resumes, skipping the members whose summary.json says "completed".
+//! same command again resumes, skipping the members whose summary.json says "completed" and
+//! going on with a member that was stopped (Ctrl-C) from its checkpoint (`--resume`).
 
 pub mod aggregate;
 pub mod curves;

@@ -120,7 +120,7 @@ fn check_len(path: &Path, f: &Field, n: usize) -> Result<()> {
 
 /// A ParaView data collection (`.pvd`): rewritten atomically after every added step, so it
 /// always lists exactly the `.vtu` files that exist.
-#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone)]
 pub struct PvdSeries {
     path: PathBuf,
     entries: Vec<(f64, String)>,
@@ -134,6 +134,17 @@ impl PvdSeries {
     /// Adds a dataset (file name relative to the `.pvd`) at `time` and rewrites the collection.
     pub fn add(&mut self, time: f64, file: &str) -> Result<()> {
         self.entries.push((time, file.to_string()));
+        self.write()
+    }
+
+    /// The datasets listed: (time, file name relative to the `.pvd`).
+    pub fn entries(&self) -> &[(f64, String)] {
+        &self.entries
+    }
+
+    /// Lists `entries` instead (e.g. those of a checkpoint) and rewrites the collection.
+    pub fn replace_entries(&mut self, entries: Vec<(f64, String)>) -> Result<()> {
+        self.entries = entries;
         self.write()
     }
 

@@ -123,7 +123,8 @@ pub struct RunPlan {
     /// Where and how often the run writes checkpoints (None: never).
     pub checkpoint: Option<CheckpointPlan>,
     /// Stop the run (as if interrupted, with a checkpoint) once this many increments are
-    /// committed in all: a run split in parts, e.g. to test that resuming it changes nothing.
+    /// committed in all, at the first point between increments after that (no crossing under
+    /// way): a run split in parts, e.g. to test that resuming it changes nothing.
     pub stop_after_increments: Option<usize>,
 }
 
@@ -404,6 +405,14 @@ impl Driver<'_> {
         Ok(())
     }
 
+    /// Whether the plan's `stop_after_increments` stops the run now: that many increments are
+    /// committed and the path is between increments (no crossing under way, no cut since the
+    /// commit), where a checkpoint resumes exactly.
+    fn stop_due(&self) -> bool {
+        let clean = self.crossing.is_none() && self.path.cuts_since_commit == 0;
+        clean && self.plan.stop_after_increments.is_some_and(|n| self.summary.increments >= n)
+    }
+
     /// The assembled initial state's residual norm ||r(u_0, 0)|| and the solver's residual test
     /// tol_residual F, where the residual fails it.
     fn start_imbalance(&self) -> Option<(f64, f64)> {
@@ -432,9 +441,7 @@ impl Driver<'_> {
             self.path.crawling = false;
         }
         while self.path.t < step.end_time - 1e-12 * self.t_end {
-            if self.plan.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::Relaxed))
-                || self.plan.stop_after_increments.is_some_and(|n| self.summary.increments >= n)
-            {
+            if self.plan.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::Relaxed)) || self.stop_due() {
                 return Ok(Some(Ending::Interrupted));
             }
             self.checkpoint_if_due()?;

@@ -56,12 +56,13 @@ impl VtkRecorder {
 /// The name of the VTK series' record in a checkpoint.
 const NAME: &str = "vtk series";
 
-/// What a checkpoint keeps of the series: the frames written, and each collection's list.
+/// What a checkpoint keeps of the series: the frames written, and each collection's list of
+/// (time, file) (file names are relative, so a moved output folder resumes too).
 #[derive(serde::Serialize, serde::Deserialize)]
 struct Saved {
     frame: usize,
-    solid: PvdSeries,
-    points: Vec<PvdSeries>,
+    solid: Vec<(f64, String)>,
+    points: Vec<Vec<(f64, String)>>,
 }
 
 impl Observer for VtkRecorder {
@@ -70,7 +71,11 @@ impl Observer for VtkRecorder {
     }
 
     fn saved_state(&mut self) -> Result<Option<ObserverState>> {
-        let saved = Saved { frame: self.frame, solid: self.solid.clone(), points: self.points.clone() };
+        let saved = Saved {
+            frame: self.frame,
+            solid: self.solid.entries().to_vec(),
+            points: self.points.iter().map(|p| p.entries().to_vec()).collect(),
+        };
         Ok(Some(ObserverState::new(NAME, &saved)))
     }
 
@@ -85,10 +90,10 @@ impl Observer for VtkRecorder {
                 self.points.len()
             )));
         }
-        (self.frame, self.solid, self.points) = (frame, solid, points);
-        self.solid.write()?;
-        for series in &self.points {
-            series.write()?;
+        self.frame = frame;
+        self.solid.replace_entries(solid)?;
+        for (series, entries) in self.points.iter_mut().zip(points) {
+            series.replace_entries(entries)?;
         }
         let stems: Vec<String> = std::iter::once(self.name.clone())
             .chain(model.contributions.iter().map(|c| format!("{}_{}", self.name, c.name())))
