@@ -45,8 +45,8 @@ enum Command {
         overwrite: bool,
         /// Go on with the run in the output folder from its checkpoint (restart.bin, written
         /// every output.checkpoint_minutes and when a run fails or is stopped). The case must
-        /// describe the same problem; its [solver] settings, step increments and output may
-        /// change.
+        /// describe the same problem; its [solver] settings, step increments, output spacing,
+        /// output folder and checkpoint interval may change.
         #[arg(long)]
         resume: bool,
         /// Stop, as if interrupted (with a checkpoint), once this many increments are committed

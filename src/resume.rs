@@ -69,7 +69,7 @@ pub fn check_same_problem(case: &LoadedCase, checkpoint: &Path, saved: &str, now
         if key.is_empty() { "(the case)".to_string() } else { key },
         format!(
             "differs from the checkpointed run's ({was} there, {is} now) in '{}': a run resumes only the \
-             problem it checkpointed (its solver settings, step increments and output may change)",
+             problem it checkpointed (its [solver] settings, step increments and output spacing may change)",
             checkpoint.display()
         ),
     ))
