@@ -73,12 +73,7 @@ pub fn run(case: &LoadedCase, options: &RunOptions) -> Result<RunSummary> {
 }
 
 /// The observers of a run into `out`: the files every run writes, plots, and progress.
-fn observers(
-    case: &LoadedCase,
-    built: &BuiltModel,
-    out: &std::path::Path,
-    progress: bool,
-) -> Result<Vec<Box<dyn Observer>>> {
+fn observers(case: &LoadedCase, built: &BuiltModel, out: &std::path::Path, progress: bool) -> Vec<Box<dyn Observer>> {
     let model = &built.model;
     let mut list: Vec<Box<dyn Observer>> = vec![
         Box::new(HistoryRecorder::new(
@@ -99,7 +94,7 @@ fn observers(
     if progress {
         list.push(Box::new(crate::progress::ProgressDisplay::new()));
     }
-    Ok(list)
+    list
 }
 
 /// The case's `solver.continuation` as the driver's crossing plan.
@@ -158,7 +153,7 @@ fn run_built(
         let path = out.join(format!("{name}_points.csv"));
         crate::build::write_points_csv(&path, points).map_err(|source| CoreError::Write { path, source })?;
     }
-    let mut observers = observers(case, built, &out, options.progress)?;
+    let mut observers = observers(case, built, &out, options.progress);
     let plan = RunPlan {
         name: case.name.clone(),
         units: case.case.units.as_ref().map_or_else(Default::default, |u| (u.length.clone(), u.force.clone())),

@@ -37,7 +37,7 @@ use std::time::Instant;
 pub struct Checkpoint {
     /// What identifies the problem ([`crate::checkpoint::CheckpointPlan::fingerprint`]).
     pub fingerprint: String,
-    pub model: ModelState,
+    model: ModelState,
     driver: DriverState,
     observers: Vec<ObserverState>,
 }
@@ -46,16 +46,6 @@ impl Checkpoint {
     /// Reads the checkpoint at `path`.
     pub fn read(path: &Path) -> Result<Self> {
         checkpoint::read(path)
-    }
-
-    /// The pseudo-time of the checkpointed state.
-    pub fn time(&self) -> f64 {
-        self.driver.path.t
-    }
-
-    /// The increments committed up to the checkpoint.
-    pub fn increments(&self) -> usize {
-        self.driver.summary.increments
     }
 }
 
