@@ -356,6 +356,7 @@ fn main() -> ExitCode {
                 interrupt: Some(interrupt_on_ctrl_c()),
                 resume,
                 stop_after_increments: stop_after,
+                stop_after_flow_steps: None,
             };
             for summary in stiction::sweep::run_sweep(&case, &sets, &options)? {
                 // a closed stdout (e.g. `| head -1`) is not an error of the run

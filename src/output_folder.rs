@@ -1,13 +1,14 @@
 //! The output folder of a run: never overwritten silently. A run goes into a new or empty
 //! folder; with `--overwrite` it may replace an earlier Stiction run (a folder holding
-//! `summary.json`, `history.csv`, a sweep's `sweep.json` or an ensemble member's `member.json`),
+//! `summary.json`, `history.csv`, a sweep's `sweep-plan.json` or `sweep.json`, or an ensemble
+//! member's `member.json`),
 //! never a folder of other files.
 
 use crate::error::{Result, StictionError};
 use std::path::Path;
 
 /// Files whose presence marks a folder as written by an earlier run of Stiction.
-const RUN_MARKERS: [&str; 4] = ["summary.json", "history.csv", "sweep.json", "member.json"];
+const RUN_MARKERS: [&str; 5] = ["summary.json", "history.csv", "sweep-plan.json", "sweep.json", "member.json"];
 
 /// Whether a run may write into `out` (see the module documentation), without touching it:
 /// Ok(true) when `out` holds an earlier run that `overwrite` allows to replace.

@@ -44,6 +44,9 @@ pub struct RunOptions {
     pub resume: bool,
     /// Stop (as if interrupted, with a checkpoint) once this many increments are committed.
     pub stop_after_increments: Option<usize>,
+    /// Stop (as if interrupted, with a checkpoint) inside a damped-flow snap, after this many
+    /// flow steps of this process (a test that resuming inside a snap changes nothing).
+    pub stop_after_flow_steps: Option<usize>,
 }
 
 /// Output directory of a case: `--out`, else `output.directory`, else `out/<name>`.
@@ -178,6 +181,7 @@ fn run_built(
             fingerprint: crate::resume::fingerprint(case),
         }),
         stop_after_increments: options.stop_after_increments,
+        stop_after_flow_steps: options.stop_after_flow_steps,
     };
     let ordering = match case.case.solver.ordering {
         OrderingSpec::NestedDissection => Ordering::NestedDissection,

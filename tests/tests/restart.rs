@@ -15,19 +15,32 @@ fn scratch(name: &str) -> PathBuf {
     d
 }
 
-/// Runs `case` with `sets` into `out`: afresh, or resumed; stopping after `stop_after`
-/// increments when given.
+/// Where a part of a run stops.
+#[derive(Debug, Clone, Copy)]
+enum Stop {
+    /// After this many increments in all.
+    Increments(usize),
+    /// Inside a damped-flow snap, after this many flow steps of the part.
+    FlowSteps(usize),
+}
+
+/// Runs `case` with `sets` into `out`: afresh, or resumed; stopping where `stop` says when
+/// given.
 fn part(
     case: &str,
     sets: &[&str],
     out: &Path,
     resume: bool,
-    stop_after: Option<usize>,
+    stop: Option<Stop>,
 ) -> stiction::error::Result<RunSummary> {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let loaded = stiction::case::load(&workspace_root().join(case), &sets)?;
-    let options =
-        RunOptions { out: Some(out.to_path_buf()), resume, stop_after_increments: stop_after, ..Default::default() };
+    let mut options = RunOptions { out: Some(out.to_path_buf()), resume, ..Default::default() };
+    match stop {
+        Some(Stop::Increments(n)) => options.stop_after_increments = Some(n),
+        Some(Stop::FlowSteps(n)) => options.stop_after_flow_steps = Some(n),
+        None => {}
+    }
     run(&loaded, &options)
 }
 
@@ -37,16 +50,27 @@ fn part(
 /// collections. `rewind`: the last part goes on from the first part's checkpoint instead of its
 /// own, as after a run killed long after its last checkpoint, so that what the killed run wrote
 /// past the checkpoint must be cut back.
-fn resumed_equals_straight(case: &str, sets: &[&str], stops: &[usize], rewind: bool, label: &str) -> RunSummary {
+fn resumed_equals_straight(case: &str, sets: &[&str], stops: &[Stop], rewind: bool, label: &str) -> RunSummary {
     let straight_out = scratch(&format!("restart-{label}-straight"));
     let straight = part(case, sets, &straight_out, false, None).unwrap_or_else(|e| panic!("{e}"));
     let parts_out = scratch(&format!("restart-{label}-parts"));
-    for (k, &n) in stops.iter().enumerate() {
-        let error = part(case, sets, &parts_out, k > 0, Some(n)).expect_err("a part stops before the end");
+    for (k, &stop) in stops.iter().enumerate() {
+        let error = part(case, sets, &parts_out, k > 0, Some(stop)).expect_err("a part stops before the end");
         assert!(error.to_string().contains("--resume"), "the stop says how to go on: {error}");
         let summary = std::fs::read_to_string(parts_out.join("summary.json")).unwrap();
         assert!(summary.contains("\"status\": \"interrupted\""), "{summary}");
-        assert!(summary.contains(&format!("\"increments\": {n},")), "part {k} stopped after {n} increments: {summary}");
+        match stop {
+            Stop::Increments(n) => {
+                assert!(
+                    summary.contains(&format!("\"increments\": {n},")),
+                    "part {k} stopped after {n} increments: {summary}"
+                )
+            }
+            Stop::FlowSteps(n) => assert!(
+                summary.contains("inside the snap") && summary.contains("damped flow steps"),
+                "part {k} stopped inside a snap, after {n} flow steps: {summary}"
+            ),
+        }
         assert!(parts_out.join("restart.bin").exists(), "a stopped run leaves its checkpoint");
         if rewind && k == 0 {
             std::fs::copy(parts_out.join("restart.bin"), parts_out.with_extension("first-checkpoint")).unwrap();
@@ -90,10 +114,11 @@ fn resumed_equals_straight(case: &str, sets: &[&str], stops: &[usize], rewind: b
 }
 
 /// The elastic-perfectly plastic Lennard-Jones sphere (axisymmetric, w = 3, coarse): J2 states,
-/// the flat's law, damped-flow snaps at jump-in and pull-off, stopped before and after the
-/// first snap and during unloading.
+/// the flat's law, damped-flow snaps at jump-in and pull-off, stopped inside the first snap
+/// (the jump-in from the unbalanced start, before any increment is committed), inside a later
+/// one, and during unloading.
 #[test]
-fn a_plastic_adhesive_sphere_stopped_twice_and_resumed_writes_the_same_history_as_one_run() {
+fn a_plastic_adhesive_sphere_stopped_inside_snaps_and_resumed_writes_the_same_history_as_one_run() {
     let sets = [
         "mesh.parameters.h_contact=8.0",
         "mesh.parameters.r_fine=40.0",
@@ -102,8 +127,13 @@ fn a_plastic_adhesive_sphere_stopped_twice_and_resumed_writes_the_same_history_a
         "output.checkpoint_minutes=0",
         "solver.threads=1",
     ];
-    let summary =
-        resumed_equals_straight("cases/ru-sphere/smooth-lj-w3.toml", &sets, &[3, 150, 260], false, "lj-plastic");
+    let summary = resumed_equals_straight(
+        "cases/ru-sphere/smooth-lj-w3.toml",
+        &sets,
+        &[Stop::FlowSteps(100), Stop::FlowSteps(210), Stop::Increments(260)],
+        false,
+        "lj-plastic",
+    );
     assert!(summary.snaps >= 2 && summary.plastic_dissipation > 0.0, "the path has snaps and yields");
 }
 
@@ -113,8 +143,13 @@ fn a_plastic_adhesive_sphere_stopped_twice_and_resumed_writes_the_same_history_a
 #[test]
 fn the_rough_sphere_stopped_twice_and_resumed_writes_the_same_history_as_one_run() {
     let sets = ["output.checkpoint_minutes=0", "solver.threads=1", "solver.refactorization_cost_ratio=20"];
-    let summary =
-        resumed_equals_straight("cases/ru-rough-sphere/rough-w6-quick.toml", &sets, &[7, 60], false, "rough-quick");
+    let summary = resumed_equals_straight(
+        "cases/ru-rough-sphere/rough-w6-quick.toml",
+        &sets,
+        &[Stop::Increments(7), Stop::Increments(60)],
+        false,
+        "rough-quick",
+    );
     assert!(summary.interfaces[0].pull_off_force < 0.0, "the asperities adhere");
 }
 
@@ -124,7 +159,13 @@ fn the_rough_sphere_stopped_twice_and_resumed_writes_the_same_history_as_one_run
 #[test]
 fn cohesive_elements_stopped_in_softening_and_resumed_write_the_same_history_as_one_run() {
     let sets = ["output.checkpoint_minutes=0", "solver.threads=1", "solver.refactorization_cost_ratio=20"];
-    resumed_equals_straight("cases/validation/mixed-mode-blocks.toml", &sets, &[10, 55], true, "mixed-mode");
+    resumed_equals_straight(
+        "cases/validation/mixed-mode-blocks.toml",
+        &sets,
+        &[Stop::Increments(10), Stop::Increments(55)],
+        true,
+        "mixed-mode",
+    );
 }
 
 /// Resuming with another problem names the first key that differs; with other solver settings
@@ -134,7 +175,7 @@ fn resuming_another_problem_or_a_completed_run_is_refused_with_the_reason() {
     let case = "cases/validation/mixed-mode-blocks.toml";
     let sets = ["output.checkpoint_minutes=0", "solver.threads=1"];
     let out = scratch("restart-refusals");
-    part(case, &sets, &out, false, Some(20)).expect_err("stopped");
+    part(case, &sets, &out, false, Some(Stop::Increments(20))).expect_err("stopped");
     let other: Vec<&str> = sets.iter().copied().chain(["materials.block.youngs_modulus=2.0e5"]).collect();
     let error = part(case, &other, &out, true, None).unwrap_err().to_string();
     assert!(
@@ -148,4 +189,54 @@ fn resuming_another_problem_or_a_completed_run_is_refused_with_the_reason() {
     assert!(error.contains("has no checkpoint") && error.contains("completed"), "{error}");
     let error = part(case, &sets, &scratch("restart-nothing-there"), true, None).unwrap_err().to_string();
     assert!(error.contains("has no checkpoint") && error.contains("--out"), "{error}");
+}
+
+/// A sweep stopped in its first run and resumed: the first run goes on from its checkpoint, the
+/// second runs afresh, and each writes the history of the sweep done in one go; resumed again,
+/// the completed runs are kept (the same summaries); resumed with other sweep values it is
+/// refused with the key that differs.
+#[test]
+fn a_sweep_stopped_in_its_first_run_and_resumed_writes_the_same_runs_as_one_sweep() {
+    let case = workspace_root().join("cases/validation/hertz-axisym.toml");
+    let sets = |values: &str| -> Vec<String> {
+        [
+            "mesh.parameters.h_contact=10.0",
+            &format!("sweep={{ key = \"interfaces.0.approach\", values = {values}, label = \"approach\" }}"),
+            "steps.0.initial_increment=0.25",
+            "steps.0.max_increment=0.25",
+            "output.vtk=false",
+            "output.checkpoint_minutes=0",
+            "solver.threads=1",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect()
+    };
+    let sweep = |out: &Path, values: &str, resume: bool, stop: Option<usize>| {
+        let options =
+            RunOptions { out: Some(out.to_path_buf()), resume, stop_after_increments: stop, ..Default::default() };
+        stiction::sweep::run_sweep(&case, &sets(values), &options)
+    };
+    let straight_out = scratch("restart-sweep-straight");
+    let straight = sweep(&straight_out, "[0.5, 1.0]", false, None).unwrap_or_else(|e| panic!("{e}"));
+    let parts_out = scratch("restart-sweep-parts");
+    let error = sweep(&parts_out, "[0.5, 1.0]", false, Some(2)).expect_err("the first run stops");
+    assert!(error.to_string().contains("--resume"), "{error}");
+    assert!(parts_out.join("approach=0.5").join("restart.bin").exists());
+    assert!(!parts_out.join("approach=1").exists(), "the second run had not started");
+    let resumed = sweep(&parts_out, "[0.5, 1.0]", true, None).unwrap_or_else(|e| panic!("{e}"));
+    for folder in ["approach=0.5", "approach=1"] {
+        for file in ["history.csv", "events.csv", "cycles.csv"] {
+            let read = |root: &Path| std::fs::read(root.join(folder).join(file)).unwrap();
+            assert!(read(&parts_out) == read(&straight_out), "{folder}/{file} differs from the one-go sweep's");
+        }
+    }
+    let forces = |s: &[RunSummary]| s.iter().map(|s| s.interfaces[0].max_force.to_bits()).collect::<Vec<_>>();
+    assert_eq!(forces(&resumed), forces(&straight));
+    let again = sweep(&parts_out, "[0.5, 1.0]", true, None).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(forces(&again), forces(&straight), "completed runs are kept");
+    let error = sweep(&parts_out, "[0.5, 2.0]", true, None).unwrap_err().to_string();
+    assert!(error.contains("sweep.values") && error.contains("1.0") && error.contains("2.0"), "{error}");
+    let error = sweep(&scratch("restart-sweep-nothing"), "[0.5, 1.0]", true, None).unwrap_err().to_string();
+    assert!(error.contains("sweep-plan.json"), "{error}");
 }

@@ -151,6 +151,7 @@ fn run_on_path(incrementation: Incrementation, twist: Twist) -> Run {
         tangent: TangentChoice::Consistent,
         checkpoint: None,
         stop_after_increments: None,
+        stop_after_flow_steps: None,
     };
     let model = &mut built.model;
     let mut linear = FaerCholesky::analyse_with(model.pattern(), Ordering::Amd).unwrap();

@@ -56,7 +56,7 @@ impl Default for NewtonSettings {
 }
 
 /// The scales convergence is measured against (see the module documentation).
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
 pub struct ReferenceScales {
     /// ||u|| at the last converged increment.
     pub displacement: f64,

@@ -67,6 +67,13 @@
 //! the test, the step is cut until it no longer moves u, and the snap fails). Spanning a move
 //! below the flow's tolerance by one backward-Euler update changes the path by less than that
 //! tolerance.
+//!
+//! Pauses: after an accepted step the caller may pause the flow ([`follow_damped_flow`],
+//! [`FlowControl::Pause`]). The flow's own state ([`FlowState`]: the last accepted state and
+//! velocity, the step before it, the next step's length, the commit and end bars) and the
+//! problem's committed state are all its further steps depend on, so a flow taken up again
+//! from them, in another process from a checkpoint too, takes the same steps (with a solver
+//! that starts afresh at the pause either way).
 
 use super::convergence::{NewtonSettings, ReferenceScales};
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
@@ -116,7 +123,7 @@ pub enum FlowDamping {
 }
 
 /// What a flow took.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub struct FlowReport {
     /// Newton iterations, factorizations and seconds of all its step solves that converged
     /// (accepted, or redone for accuracy) and of the direct end solves that converged.
@@ -319,6 +326,7 @@ impl Redone {
 }
 
 /// The last accepted step: where it started, the velocity there, and its length.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 struct PreviousStep {
     u: Vec<f64>,
     v: Vec<f64>,
@@ -425,7 +433,8 @@ fn end_directly(
 /// Accepted steps are committed (except those that moved too little, see the module
 /// documentation); on success the problem holds the end state as its trial state (not
 /// committed). On failure the problem is at the last committed step. `progress` is
-/// told of every accepted step (long flows report how far they are).
+/// told of every accepted step (long flows report how far they are). A flow that may be paused
+/// between steps (and taken up again in another process) is [`follow_damped_flow`].
 pub fn damped_flow(
     problem: &mut dyn NonlinearProblem,
     mass: &[f64],
@@ -435,105 +444,214 @@ pub fn damped_flow(
     settings: &FlowSettings,
     progress: &mut dyn FnMut(&FlowReport),
 ) -> std::result::Result<FlowReport, IncrementFailure> {
+    let mut control = |report: &FlowReport| {
+        progress(report);
+        FlowControl::Continue
+    };
+    match follow_damped_flow(problem, mass, linear, solver, settings, FlowStart::Fresh(scales), &mut control)? {
+        FlowEnd::Settled(report) => Ok(report),
+        FlowEnd::Paused(_) => unreachable!("a flow whose control never pauses is not paused"),
+    }
+}
+
+/// Where a damped flow starts: afresh from the problem's trial state (the committed one), with
+/// the scales the solver measures convergence against, or where an earlier call paused.
+#[derive(Debug)]
+pub enum FlowStart {
+    Fresh(ReferenceScales),
+    Resumed(Box<FlowState>),
+}
+
+/// What the caller of [`follow_damped_flow`] tells it after each accepted step that did not
+/// end the flow.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FlowControl {
+    Continue,
+    /// Return the flow's state now (e.g. to write a checkpoint, or to stop the run): the
+    /// problem is rolled back to the last committed step, and [`FlowStart::Resumed`] with the
+    /// state goes on exactly as the flow would have.
+    Pause,
+}
+
+/// How a call of [`follow_damped_flow`] ended.
+#[derive(Debug)]
+pub enum FlowEnd {
+    /// On a stable equilibrium, which the problem holds as its trial state.
+    Settled(FlowReport),
+    /// Paused between steps when the control asked.
+    Paused(Box<FlowState>),
+}
+
+/// A damped flow between two steps: what its further steps depend on besides the problem's
+/// committed state (the last committed step), so that a flow paused here (and written to a
+/// checkpoint) goes on from it as if it had not stopped.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct FlowState {
+    /// What the flow took so far.
+    pub report: FlowReport,
+    scales: ReferenceScales,
+    /// Where the flow started (the snap's move so far is measured from it).
+    origin: Vec<f64>,
+    /// The last accepted state and its velocity, and the length of the next step.
+    u_n: Vec<f64>,
+    v: Vec<f64>,
+    h: f64,
+    /// The step before it (None: the next step is backward Euler).
+    previous: Option<PreviousStep>,
+    /// The last committed state, and the move from it after which a step is committed.
+    committed: Vec<f64>,
+    commit_bar: f64,
+    /// The end is tried directly when the move to come is below this too (halved after a miss).
+    tail_bar: f64,
+    /// The static residual of the last accepted state, which a failure reports.
+    committed_residual: f64,
+}
+
+impl FlowState {
+    /// The flow's start at the problem's assembled trial state: its velocity and first step
+    /// ([`start_velocity`]).
+    fn start(
+        problem: &dyn NonlinearProblem,
+        mass: &[f64],
+        linear: &mut dyn LinearSolver,
+        scales: ReferenceScales,
+        tolerance: f64,
+        mut report: FlowReport,
+    ) -> Result<Self> {
+        let committed_residual = norm(problem.residual());
+        let (v, h) = start_velocity(problem, mass, linear, tolerance, &mut report.costs)?;
+        let origin = problem.free_values();
+        Ok(Self {
+            report,
+            scales,
+            u_n: origin.clone(),
+            committed: origin.clone(),
+            origin,
+            v,
+            h,
+            previous: None,
+            // moves below this are within the flow's tolerance of the smallest increment the
+            // solver's correction test measures against, 1e-3 ||u||
+            commit_bar: tolerance * 1e-3 * scales.displacement,
+            tail_bar: f64::INFINITY,
+            committed_residual,
+        })
+    }
+}
+
+/// [`damped_flow`] from `start`, asking `control` after each accepted step that did not end the
+/// flow whether to go on or to pause (see [`FlowControl::Pause`]).
+pub fn follow_damped_flow(
+    problem: &mut dyn NonlinearProblem,
+    mass: &[f64],
+    linear: &mut dyn LinearSolver,
+    solver: &mut dyn NonlinearSolver,
+    settings: &FlowSettings,
+    start: FlowStart,
+    control: &mut dyn FnMut(&FlowReport) -> FlowControl,
+) -> std::result::Result<FlowEnd, IncrementFailure> {
     let newton = solver.settings().clone();
     let tol = settings.tolerance;
-    let mut flow = FlowReport::default();
     let t = problem.time();
-    let timer = Instant::now();
-    problem.assemble(true)?;
-    flow.costs.assembly_seconds += timer.elapsed().as_secs_f64();
+    let mut s = match start {
+        FlowStart::Resumed(state) => *state,
+        FlowStart::Fresh(scales) => {
+            let mut report = FlowReport::default();
+            let timer = Instant::now();
+            problem.assemble(true)?;
+            report.costs.assembly_seconds += timer.elapsed().as_secs_f64();
+            let force_scale = newton.force_scale(problem.force_norm(), scales);
+            if newton.residual_negligible(norm(problem.residual()), force_scale) {
+                return Ok(FlowEnd::Settled(report));
+            }
+            FlowState::start(problem, mass, linear, scales, tol, report)?
+        }
+    };
+    let scales = s.scales;
     let force_scale = |p: &dyn NonlinearProblem| newton.force_scale(p.force_norm(), scales);
-    if newton.residual_negligible(norm(problem.residual()), force_scale(problem)) {
-        return Ok(flow);
-    }
     // the wrapped problem's residual at an accepted step is the static one, r(u_n) (= -M v_n
     // up to the step's solve): at rest when that passes the solver's residual test
     let at_rest = |p: &dyn NonlinearProblem| newton.residual_converged(norm(p.residual()), force_scale(p));
     // moves below this are within the flow's tolerance of the smallest increment the solver's
     // correction test measures against, 1e-3 ||u||
     let resolution = tol * 1e-3 * scales.displacement;
-    // the static residual of the last accepted state, which a failure reports
-    let mut committed_residual = norm(problem.residual());
-    let (mut v, mut h) = start_velocity(problem, mass, linear, tol, &mut flow.costs)?;
-    let origin = problem.free_values();
-    let mut u_n = origin.clone();
-    // the last committed state, and the move from it after which a step is committed
-    let mut committed = origin.clone();
-    let mut commit_bar = resolution;
-    let mut previous: Option<PreviousStep> = None;
     let mut cuts_in_a_row = 0;
     // the step last redone shorter for its error
     let mut redone: Option<Redone> = None;
-    // the end is tried directly when the move to come is below this too (halved after a miss)
-    let mut tail_bar = f64::INFINITY;
-    while flow.steps < settings.max_steps {
-        let formula = Formula::new(&u_n, &v, previous.as_ref(), h);
+    while s.report.steps < settings.max_steps {
+        let h = s.h;
+        let formula = Formula::new(&s.u_n, &s.v, s.previous.as_ref(), h);
         problem.set_free_values(&formula.predicted);
-        let mut step = DampedStep::new(&mut *problem, mass, &formula, &u_n, h, settings);
+        let mut step = DampedStep::new(&mut *problem, mass, &formula, &s.u_n, h, settings);
         let solving = Instant::now();
-        if let Err(e) = solver.solve(&mut step, linear, t, scales).map(|report| flow.costs.add_costs(&report)) {
-            flow.failed_solve_seconds += solving.elapsed().as_secs_f64();
+        if let Err(e) = solver.solve(&mut step, linear, t, scales).map(|report| s.report.costs.add_costs(&report)) {
+            s.report.failed_solve_seconds += solving.elapsed().as_secs_f64();
             problem.rollback();
-            flow.rejected += 1;
+            s.report.rejected += 1;
             redone = None;
             cuts_in_a_row += 1;
             if cuts_in_a_row > MAX_CUTS_IN_A_ROW {
-                return end_stalled_near_rest(problem, &u_n, &newton, scales, flow).ok_or(e);
+                return end_stalled_near_rest(problem, &s.u_n, &newton, scales, s.report)
+                    .map(FlowEnd::Settled)
+                    .ok_or(e);
             }
-            h *= 0.25;
+            s.h *= 0.25;
             continue;
         }
         let u = problem.free_values();
         let v_new: Vec<f64> = u.iter().zip(&formula.start).map(|(a, b)| (a - b) / (formula.beta * h)).collect();
-        let moved = distance_inf(&u, &u_n);
-        let error = formula.error(&u, &v_new, &v, h);
+        let moved = distance_inf(&u, &s.u_n);
+        let error = formula.error(&u, &v_new, &s.v, h);
         let ratio = error / (tol * moved);
         let kink = redone.is_some_and(|r: Redone| r.is_kink(h, ratio));
         if error > 2.0 * tol * moved && !kink {
             problem.rollback();
-            flow.rejected += 1;
+            s.report.rejected += 1;
             redone = Some(Redone { h, ratio });
-            h *= step_factor(tol, moved, error, formula.order, 0.9);
+            s.h *= step_factor(tol, moved, error, formula.order, 0.9);
             continue;
         }
         redone = None;
         cuts_in_a_row = 0;
-        if distance_inf(&u, &committed) >= commit_bar {
+        if distance_inf(&u, &s.committed) >= s.commit_bar {
             problem.commit();
-            committed.clone_from(&u);
-            flow.commits += 1;
+            s.committed.clone_from(&u);
+            s.report.commits += 1;
         }
-        flow.steps += 1;
-        progress(&flow);
-        let decay = norm(&v_new) / norm(&v);
-        let (u_prev, v_prev) = (std::mem::replace(&mut u_n, u), std::mem::replace(&mut v, v_new));
+        s.report.steps += 1;
+        let decay = norm(&v_new) / norm(&s.v);
+        let (u_prev, v_prev) = (std::mem::replace(&mut s.u_n, u), std::mem::replace(&mut s.v, v_new));
         if kink {
             // across the kink the velocity is not smooth: BDF2's history would carry the jump
             // into the next steps; the flow restarts by backward Euler at the same length
-            flow.kinks += 1;
-            previous = None;
+            s.report.kinks += 1;
+            s.previous = None;
         } else {
-            previous = Some(PreviousStep { u: u_prev, v: v_prev, h });
+            s.previous = Some(PreviousStep { u: u_prev, v: v_prev, h });
             // BDF2 stays zero-stable for step ratios below 1 + sqrt 2
-            h *= step_factor(tol, moved, error, formula.order, 2.0);
+            s.h *= step_factor(tol, moved, error, formula.order, 2.0);
         }
         // the wrapped problem's residual at the accepted state is the static one, r(u_n)
-        committed_residual = norm(problem.residual());
+        s.committed_residual = norm(problem.residual());
         if at_rest(problem) {
-            return Ok(flow);
+            return Ok(FlowEnd::Settled(s.report));
         }
         let to_come = if decay < 1.0 { moved * decay / (1.0 - decay) } else { f64::INFINITY };
-        let so_far = distance_inf(&u_n, &origin);
+        let so_far = distance_inf(&s.u_n, &s.origin);
         let negligible = (tol * so_far).max(resolution);
-        commit_bar = negligible;
-        if to_come < negligible && to_come < tail_bar {
-            if end_directly(problem, solver, linear, scales, &u_n, negligible, &mut flow) {
-                return Ok(flow);
+        s.commit_bar = negligible;
+        if to_come < negligible && to_come < s.tail_bar {
+            if end_directly(problem, solver, linear, scales, &s.u_n, negligible, &mut s.report) {
+                return Ok(FlowEnd::Settled(s.report));
             }
-            tail_bar = 0.5 * to_come;
+            s.tail_bar = 0.5 * to_come;
+        }
+        if control(&s.report) == FlowControl::Pause {
+            problem.rollback();
+            return Ok(FlowEnd::Paused(Box::new(s)));
         }
     }
-    Err(IncrementFailure::FlowUnsettled { steps: flow.steps, residual: committed_residual })
+    Err(IncrementFailure::FlowUnsettled { steps: s.report.steps, residual: s.committed_residual })
 }
 
 #[cfg(test)]

@@ -26,7 +26,7 @@ use crate::problem::NonlinearProblem;
 use convergence::STAGNATION_WINDOW;
 
 /// What one converged increment took.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub struct IncrementReport {
     pub iterations: usize,
     /// ||r|| before each solve and at convergence.

@@ -50,8 +50,7 @@ use crate::error::{CoreError, Result};
 use crate::linear_solver::LinearSolver;
 use crate::model::Model;
 use crate::nonlinear::arc_length::PreviousIncrement;
-use crate::nonlinear::damped_flow::{FlowDamping, FlowReport, FlowSettings, damped_flow};
-use crate::nonlinear::settle::settle;
+use crate::nonlinear::damped_flow::FlowSettings;
 use crate::nonlinear::{IncrementFailure, IncrementReport, NonlinearSolver, ReferenceScales};
 use crate::problem::NonlinearProblem;
 use crate::record::interface_tracker::{CommitContext, InterfaceInfo};
@@ -64,15 +63,14 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 pub mod checkpointing;
+mod snapping;
 pub use checkpointing::Checkpoint;
 use checkpointing::EarlierParts;
+use snapping::SnapInProgress;
 
 /// A load-controlled increment whose displacement increment exceeds this multiple of the one
 /// the previous increment's rate predicts counts as a jump over a limit point.
 pub const JUMP_RATIO: f64 = 5.0;
-
-/// A damped-flow snap tells the observers how far it is every this many steps.
-const FLOW_PROGRESS_EVERY: usize = 20;
 
 /// Snaps in a row (no ordinary increment converging in between, none moving the load on by more
 /// than the minimum increment) after which the next snap goes one initial increment ahead (or
@@ -111,8 +109,8 @@ pub struct RunPlan {
     pub continuation: Option<Continuation>,
     /// Per contribution of the model: kind and viscous-share limit.
     pub interfaces: Vec<InterfaceInfo>,
-    /// Set (e.g. by a Ctrl-C handler) to stop the run after the increment in progress: the run
-    /// ends with status "interrupted".
+    /// Set (e.g. by a Ctrl-C handler) to stop the run after the increment in progress (inside
+    /// a damped-flow snap: after its step in progress): the run ends with status "interrupted".
     pub interrupt: Option<Arc<AtomicBool>>,
     /// The predictor of the increments with no earlier rate to extrapolate.
     pub start_predictor: StartPredictor,
@@ -126,6 +124,9 @@ pub struct RunPlan {
     /// committed in all, at the first point between increments after that (no crossing under
     /// way): a run split in parts, e.g. to test that resuming it changes nothing.
     pub stop_after_increments: Option<usize>,
+    /// Stop the run (as if interrupted, with a checkpoint) inside a damped-flow snap, after
+    /// this many flow steps of this process in all: a run split in the middle of a snap.
+    pub stop_after_flow_steps: Option<usize>,
 }
 
 /// How a snap (a jump at a fixed load to the stable state the system reaches) is solved.
@@ -237,6 +238,8 @@ impl<'a> Driver<'a> {
             earlier: EarlierParts::default(),
             last_checkpoint: (Instant::now(), 0),
             model_ahead_of_record: false,
+            snap_in_progress: None,
+            flow_steps_here: 0,
             model,
             plan,
             linear,
@@ -246,16 +249,30 @@ impl<'a> Driver<'a> {
     }
 
     /// Runs the steps from step `first` (starting at `step_start`; `resumed`: the step is
-    /// under way, its increment size and output count carry on) to the end, then finishes.
-    fn run_from(mut self, first: usize, mut step_start: f64, resumed: bool) -> Result<RunSummary> {
+    /// under way, its increment size and output count carry on, and a snap the checkpoint was
+    /// taken in goes on first) to the end, then finishes.
+    fn run_from(mut self, first: usize, step_start: f64, resumed: bool) -> Result<RunSummary> {
+        let (mut first, mut step_start, mut resumed) = (first, step_start, resumed);
         let mut ending = None;
-        for si in first..self.plan.steps.len() {
-            if let Some(end) = self.run_step(si, step_start, resumed && si == first)? {
-                ending = Some(end);
-                break;
+        if resumed && self.snap_in_progress.is_some() {
+            match self.resume_snap()? {
+                Flow::Continue => {}
+                Flow::StepDone => {
+                    (first, step_start, resumed) = (first + 1, self.plan.steps[first].end_time, false);
+                }
+                Flow::Stop(message) => ending = Some(Ending::Failed(message)),
+                Flow::Interrupted => ending = Some(Ending::Interrupted),
             }
-            step_start = self.plan.steps[si].end_time;
-            self.crossing = None;
+        }
+        if ending.is_none() {
+            for si in first..self.plan.steps.len() {
+                if let Some(end) = self.run_step(si, step_start, resumed && si == first)? {
+                    ending = Some(end);
+                    break;
+                }
+                step_start = self.plan.steps[si].end_time;
+                self.crossing = None;
+            }
         }
         if ending.is_some() {
             self.write_checkpoint(ending.as_ref())?;
@@ -371,6 +388,11 @@ struct Driver<'a> {
     /// Set when a damped-flow snap failed after committing some of its steps to the model:
     /// the model's committed state is then not the one the record (history, summary) ends at.
     model_ahead_of_record: bool,
+    /// The snap under way (checkpointed with it: a checkpoint taken inside a long damped flow
+    /// goes on with that flow).
+    snap_in_progress: Option<SnapInProgress>,
+    /// Damped-flow steps this process took (see [`RunPlan::stop_after_flow_steps`]).
+    flow_steps_here: usize,
 }
 
 /// What to do after handling an attempt.
@@ -380,6 +402,8 @@ enum Flow {
     StepDone,
     /// The run cannot go on.
     Stop(String),
+    /// The run was interrupted, or asked to stop, inside a snap (which stays in progress).
+    Interrupted,
 }
 
 impl Driver<'_> {
@@ -461,6 +485,7 @@ impl Driver<'_> {
                     Flow::Continue => continue,
                     Flow::StepDone => break,
                     Flow::Stop(message) => return Ok(Some(Ending::Failed(message))),
+                    Flow::Interrupted => return Ok(Some(Ending::Interrupted)),
                 }
             }
             let scales = self.scales();
@@ -498,6 +523,7 @@ impl Driver<'_> {
                 Flow::Continue => {}
                 Flow::StepDone => return Ok(None),
                 Flow::Stop(message) => return Ok(Some(Ending::Failed(message))),
+                Flow::Interrupted => return Ok(Some(Ending::Interrupted)),
             }
         }
         if let Some(k) = step.until_separated {
@@ -556,14 +582,6 @@ impl Driver<'_> {
         self.after_cut(si, cut, failure)
     }
 
-    /// Settles one initial increment ahead of a crawl (see [`CRAWL_COMMITS`]); the path counts
-    /// as still crawling after it unless it reached a breakpoint.
-    fn crawl_snap(&mut self, si: usize, reason: &str) -> Result<Flow> {
-        let flow = self.snap_over(si, reason, self.plan.steps[si].incrementation.initial)?;
-        self.path.crawling = matches!(flow, Flow::Continue) && !self.at_breakpoint(self.path.t);
-        Ok(flow)
-    }
-
     fn after_cut(
         &mut self,
         si: usize,
@@ -579,161 +597,6 @@ impl Driver<'_> {
                 Ok(Flow::Continue)
             }
             Err(message) => self.snap(si, &message),
-        }
-    }
-
-    /// Neither control can go on: settle just past the committed time (see the module
-    /// documentation) and commit the snapped state, or stop with both reasons. Where
-    /// [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row at the minimum increment found no path
-    /// onward (load control could not go on from the states they reached), the snap goes one
-    /// initial increment ahead, as past a crawl.
-    fn snap(&mut self, si: usize, reason: &str) -> Result<Flow> {
-        let incrementation = &self.plan.steps[si].incrementation;
-        let stuck = self.path.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS;
-        let dt = if stuck { incrementation.initial } else { incrementation.minimum };
-        self.snap_over(si, reason, dt)
-    }
-
-    /// Settles at the target `dt` past the committed time (clipped to the step and the next
-    /// breakpoint) and commits it, or stops with `reason` and why settling failed. Errors are
-    /// those of committing (writing the outputs).
-    fn snap_over(&mut self, si: usize, reason: &str, dt: f64) -> Result<Flow> {
-        if self.path.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS && dt <= self.plan.steps[si].incrementation.minimum {
-            return Ok(Flow::Stop(format!(
-                "{reason}; {MAX_SNAPS_WITHOUT_PROGRESS} snaps in a row found no path onward from t = {:.6}",
-                self.path.t
-            )));
-        }
-        let step = &self.plan.steps[si];
-        self.crossing = None;
-        self.model.rollback();
-        self.load.set_increment(dt);
-        let text = format!("{}: {reason}; snapping from t = {:.6}", step.name, self.path.t);
-        self.observers.iter_mut().for_each(|o| o.message(&text));
-        let window = StepWindow {
-            t: self.path.t,
-            step_start: self.path.t,
-            step_end: step.end_time,
-            t_end: self.t_end,
-            breakpoints: &self.breakpoints,
-        };
-        let target = self.load.target(&window);
-        self.model.set_time(target);
-        let (mut settled, mut damped) = self.solve_snap(&step.name, target);
-        if let Err(failure) = &settled
-            && let Some(what) = {
-                // a damped flow goes on from its last committed step
-                self.model.rollback();
-                self.tangent.after_failed_snap(self.model, failure)
-            }
-        {
-            let text = format!("{}: snapping at t = {target:.6}: {what} after: {failure}", step.name);
-            self.observers.iter_mut().for_each(|o| o.message(&text));
-            (settled, damped) = self.solve_snap(&step.name, target);
-        }
-        let text = match &settled {
-            Ok((_, how)) => format!("{}: snapped at t = {target:.6} ({how})", step.name),
-            Err(_) => format!("{}: no stable state found at t = {target:.6}", step.name),
-        };
-        for o in self.observers.iter_mut() {
-            o.message(&text);
-        }
-        match settled {
-            Ok((report, _)) => {
-                // a snap past the minimum increment moved the load on: progress
-                self.path.snaps_in_a_row =
-                    if dt > step.incrementation.minimum { 0 } else { self.path.snaps_in_a_row + 1 };
-                self.summary.snaps += 1;
-                self.converged(si, report, Via::Settling)
-            }
-            Err(e) => {
-                self.model.rollback();
-                // the flow's committed steps are the model's, not the record's
-                self.model_ahead_of_record |= damped;
-                // a law that fails the same way while settling is said once
-                let same = matches!(&e, IncrementFailure::Error(CoreError::LawFailure { message, .. }) if reason.contains(message.as_str()));
-                let why = match (same, damped) {
-                    (true, _) => "failed the same way".to_string(),
-                    (false, false) => format!("failed: {e}"),
-                    (false, true) => format!(
-                        "failed along the damped flow ({e}; the model is left at the flow's last committed step, which is not written)"
-                    ),
-                };
-                Ok(Flow::Stop(format!("{reason}; settling on a stable state at t = {target:.6} {why}")))
-            }
-        }
-    }
-
-    /// Solves the snap at `target` from the committed state by the plan's [`SnapMethod`]: the
-    /// costs and how it went, or why it failed, and whether it was a damped flow. The wall time
-    /// of a failed snap, and of the solves a successful flow did not converge, is counted as
-    /// discarded.
-    fn solve_snap(
-        &mut self,
-        step_name: &str,
-        target: f64,
-    ) -> (std::result::Result<(IncrementReport, String), IncrementFailure>, bool) {
-        let started = Instant::now();
-        let (solved, damped, failed_solve_seconds) = self.snap_by_plan(step_name, target);
-        self.summary.discarded_attempt_seconds += match &solved {
-            Ok(_) => failed_solve_seconds,
-            Err(_) => started.elapsed().as_secs_f64(),
-        };
-        (solved, damped)
-    }
-
-    /// [`Self::solve_snap`] without the accounting: also the seconds of the flow's solves that
-    /// did not converge.
-    fn snap_by_plan(
-        &mut self,
-        step_name: &str,
-        target: f64,
-    ) -> (std::result::Result<(IncrementReport, String), IncrementFailure>, bool, f64) {
-        let scales = self.scales();
-        let flow = match self.plan.snap {
-            SnapMethod::DampedFlow(flow) => {
-                if self.mass.is_none() {
-                    self.mass = match flow.damping {
-                        FlowDamping::Mass => NonlinearProblem::mass(&*self.model),
-                        FlowDamping::Stiffness => match self.model.initial_stiffness_matrix() {
-                            Ok(stiffness) => Some(stiffness),
-                            Err(e) => return (Err(IncrementFailure::Error(e)), false, 0.0),
-                        },
-                    };
-                }
-                self.mass.as_deref().map(|mass| (flow, mass))
-            }
-            SnapMethod::Settle => None,
-        };
-        let Some((flow, mass)) = flow else {
-            let settings = self.nonlinear.settings().clone();
-            let settled = settle(self.model, &mut *self.linear, &settings, scales).map(|r| {
-                let text = format!("{} descent steps", r.iterations);
-                (r, text)
-            });
-            return (settled, false, 0.0);
-        };
-        let observers = &mut *self.observers;
-        let mut progress = |f: &FlowReport| {
-            if f.steps.is_multiple_of(FLOW_PROGRESS_EVERY) {
-                let text = format!("{step_name}: snapping at t = {target:.6}, {} damped flow steps", f.steps);
-                observers.iter_mut().for_each(|o| o.message(&text));
-            }
-        };
-        match damped_flow(self.model, mass, &mut *self.linear, &mut *self.nonlinear, scales, &flow, &mut progress) {
-            Ok(f) => {
-                let mut text = format!("{} damped flow steps, {} redone", f.steps, f.rejected);
-                if f.kinks > 0 {
-                    text += &format!(", {} across kinks", f.kinks);
-                }
-                if let Some(ratio) = f.stalled_at_residual_ratio {
-                    text += &format!("; its steps stalled near rest, ended at {ratio:.1} times the residual test");
-                    self.path.stalled_snaps.0 += 1;
-                    self.path.stalled_snaps.1 = self.path.stalled_snaps.1.max(ratio);
-                }
-                (Ok((f.costs, text)), true, f.failed_solve_seconds)
-            }
-            Err(e) => (Err(e), true, 0.0),
         }
     }
 
@@ -910,13 +773,19 @@ impl Driver<'_> {
         (s.status, s.message) = match ending {
             None => ("completed".into(), None),
             Some(Ending::Failed(message)) => ("failed".into(), Some(message)),
-            Some(Ending::Interrupted) => (
-                "interrupted".into(),
-                Some(format!(
-                    "interrupted at t = {}; every committed increment is in history.csv and the VTK series",
-                    self.path.t
-                )),
-            ),
+            Some(Ending::Interrupted) => {
+                let inside = self.snap_in_progress.as_ref().map_or(String::new(), |snap| {
+                    let steps = snap.flow.as_ref().map_or(0, |f| f.report.steps);
+                    format!(", inside the snap to t = {} after {steps} damped flow steps", snap.target)
+                });
+                (
+                    "interrupted".into(),
+                    Some(format!(
+                        "interrupted at t = {}{inside}; every committed increment is in history.csv and the VTK series",
+                        self.path.t
+                    )),
+                )
+            }
         };
         s.warnings.extend(warnings);
         if self.path.stalled_snaps.0 > 0 {

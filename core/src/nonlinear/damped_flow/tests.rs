@@ -402,3 +402,68 @@ fn a_drag_that_is_not_positive_definite_is_refused_with_the_setting_to_change() 
     let message = result.err().map(|e| e.to_string()).unwrap_or_default();
     assert!(message.contains("not positive definite") && message.contains("snap_damping"), "{message}");
 }
+
+/// A flow paused after every step, its state written out and read back (postcard, as a checkpoint holds
+/// it), and taken up again by a fresh solver on a problem rolled back to its last commit, takes
+/// the same steps to the same end as the flow that ran through, to the last bit: the cubic flow
+/// with the quasi-Newton solver, whose factor reuse the pauses reset.
+#[test]
+fn a_flow_paused_at_every_step_and_taken_up_again_ends_where_the_straight_flow_does() {
+    use super::{FlowControl, FlowEnd, FlowStart, FlowState, follow_damped_flow};
+    let settings = tolerance(0.03);
+    let solver = || QuasiNewtonSolver::new(newton().settings);
+    let mut straight = Pair::new([1.0, 1.0], 1.0);
+    let mut linear = FaerCholesky::analyse(&straight.pattern).unwrap();
+    let mut whole_solver = solver();
+    let mut fresh_every_step = |_: &super::FlowReport| {
+        // the driver makes its solver start afresh at every checkpoint: so does this run
+        FlowControl::Pause
+    };
+    let mut start = FlowStart::Fresh(ReferenceScales::default());
+    let (mut pauses, whole) = loop {
+        match follow_damped_flow(
+            &mut straight,
+            &[1.0, 1.0],
+            &mut linear,
+            &mut whole_solver,
+            &settings,
+            start,
+            &mut fresh_every_step,
+        )
+        .unwrap()
+        {
+            FlowEnd::Settled(report) => break (0usize, report),
+            FlowEnd::Paused(state) => {
+                whole_solver.start_afresh();
+                start = FlowStart::Resumed(state);
+            }
+        }
+    };
+    let mut paused = Pair::new([1.0, 1.0], 1.0);
+    let mut start = FlowStart::Fresh(ReferenceScales::default());
+    let report = loop {
+        // a new process: a fresh solver and linear solver, the state read back from its bytes
+        let mut linear = FaerCholesky::analyse(&paused.pattern).unwrap();
+        let mut fresh = solver();
+        match follow_damped_flow(&mut paused, &[1.0, 1.0], &mut linear, &mut fresh, &settings, start, &mut |_| {
+            FlowControl::Pause
+        })
+        .unwrap()
+        {
+            FlowEnd::Settled(report) => break report,
+            FlowEnd::Paused(state) => {
+                pauses += 1;
+                let bytes = postcard::to_stdvec(&*state).unwrap();
+                let read: FlowState = postcard::from_bytes(&bytes).unwrap();
+                paused.rollback();
+                start = FlowStart::Resumed(Box::new(read));
+            }
+        }
+    };
+    println!("{pauses} pauses; {} steps, {} committed", report.steps, report.commits);
+    assert!(pauses > 10, "the flow was paused along its way: {pauses}");
+    assert_eq!((report.steps, report.commits, report.rejected), (whole.steps, whole.commits, whole.rejected));
+    assert_eq!(report.costs.iterations, whole.costs.iterations);
+    assert_eq!(paused.committed, straight.committed, "the same committed states, bit for bit");
+    assert_eq!(paused.u, straight.u, "the same end");
+}

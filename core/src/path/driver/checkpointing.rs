@@ -4,8 +4,10 @@
 //! When: at the first commit at least [`crate::checkpoint::CheckpointPlan::interval`] after the last checkpoint,
 //! between increments (no crossing under way, no cut since the commit), and when the run fails
 //! or is stopped, from its last committed increment (except where a failed damped-flow snap
-//! left the model past it: the last checkpoint written stays). A completed run removes its
-//! checkpoint.
+//! left the model past it: the last checkpoint written stays). Inside a damped-flow snap, at
+//! the first accepted flow step at least the interval after the last checkpoint, and when the
+//! run is stopped there: the checkpoint then also holds the snap under way
+//! ([`super::snapping`]). A completed run removes its checkpoint.
 //!
 //! What: everything the rest of the run depends on: the model's committed state
 //! ([`crate::model::ModelState`]); the driver's (time, step, the load control's increment and
@@ -22,7 +24,7 @@
 //! the crossing's last commit; a failed run's checkpoint resumes with the increment size and the
 //! snap counter of a fresh step, as a run resumed with other solver settings needs.
 
-use super::{Driver, Ending, PathState};
+use super::{Driver, Ending, PathState, SnapInProgress};
 use crate::checkpoint::{self, ModelState};
 use crate::error::{CoreError, Result};
 use crate::path::load_control::LoadControlState;
@@ -61,6 +63,9 @@ struct DriverState {
     /// The summary so far, its totals (wall seconds, precision fallbacks) counted to the
     /// checkpoint.
     summary: RunSummary,
+    /// The snap the checkpoint was taken in, with its damped flow's state (see
+    /// [`super::snapping`]).
+    snap: Option<SnapInProgress>,
 }
 
 /// Totals of the parts of a run before it was resumed that the summary takes from counters
@@ -95,11 +100,13 @@ impl Driver<'_> {
 
     /// Writes the checkpoint of the committed state (the run ends with `ending`, if given)
     /// and makes the nonlinear solver start afresh. Nothing is written before the first commit
-    /// (the run would start over from the same state), nor where a failed damped flow left the
-    /// model past the last recorded increment (the last checkpoint stays the one to resume).
+    /// unless a snap is under way (else the run would start over from the same state), nor
+    /// where a failed damped flow left the model past the last recorded increment (the last
+    /// checkpoint stays the one to resume).
     pub(super) fn write_checkpoint(&mut self, ending: Option<&Ending>) -> Result<()> {
         let Some(plan) = &self.plan.checkpoint else { return Ok(()) };
-        if self.summary.increments == 0 || self.model_ahead_of_record {
+        let snap_under_way = self.snap_in_progress.as_ref().is_some_and(|s| s.flow.is_some());
+        if (self.summary.increments == 0 && !snap_under_way) || self.model_ahead_of_record {
             return Ok(());
         }
         let mut observers = Vec::new();
@@ -118,8 +125,14 @@ impl Driver<'_> {
         checkpoint::write(&plan.path, &record)?;
         self.nonlinear.start_afresh();
         self.last_checkpoint = (Instant::now(), self.summary.increments);
+        let inside = match &self.snap_in_progress {
+            Some(SnapInProgress { target, flow: Some(flow), .. }) => {
+                format!(", inside the snap to t = {target:.6} after {} damped flow steps", flow.report.steps)
+            }
+            _ => String::new(),
+        };
         let text = format!(
-            "checkpoint at t = {:.6} ({} increments) written to '{}'",
+            "checkpoint at t = {:.6} ({} increments{inside}) written to '{}'",
             self.path.t,
             self.summary.increments,
             plan.path.display()
@@ -147,6 +160,7 @@ impl Driver<'_> {
             stabilized: self.model.tangent_stabilized(),
             tracker: self.tracker.clone(),
             summary: self.summary.clone(),
+            snap: self.snap_in_progress.clone(),
         }
     }
 
@@ -172,6 +186,7 @@ impl Driver<'_> {
         };
         self.summary = resumed_summary(d.summary, &self.summary);
         self.unbalanced_start = None;
+        self.snap_in_progress = d.snap;
         self.last_checkpoint = (Instant::now(), self.summary.increments);
         for o in self.observers.iter_mut() {
             o.resumed(self.model, &self.summary, &observers)?;
