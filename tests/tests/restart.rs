@@ -1,8 +1,11 @@
 //! Restart: a run stopped at checkpoints and resumed in new processes (`stiction run --resume`)
-//! against the same run done in one go. The reference is the run itself: with a solver whose
-//! decisions do not depend on measured times (`solver.refactorization_cost_ratio` fixed), the
-//! resumed run must write the same history.csv, events.csv and cycles.csv to the last byte,
-//! and the same summary counts (increments, cuts, snaps, Newton iterations, factorizations).
+//! against the same run done in one go without checkpoints. The reference is the run itself:
+//! with a solver whose decisions do not depend on measured times
+//! (`solver.refactorization_cost_ratio` fixed), the run checkpointed at every commit and
+//! resumed must write the same history.csv, events.csv and cycles.csv to the last byte, and
+//! the same summary counts (increments, cuts, snaps, Newton iterations, factorizations):
+//! writing a checkpoint changes nothing, and a resumed run takes up all its state, the
+//! solvers' included.
 //! Resuming another problem, or a folder with nothing to resume, is refused with the reason.
 
 use std::path::{Path, PathBuf};
@@ -44,8 +47,9 @@ fn part(
     run(&loaded, &options)
 }
 
-/// Runs `case` in one go and in parts stopped after each of `stops` increments (each part a
-/// resumption of the one before), and checks that both write the same record: the same files
+/// Runs `case` in one go (writing no checkpoint) and in parts stopped at each of `stops` (each
+/// part a resumption of the one before, checkpointing at every commit and every damped-flow
+/// step), and checks that both write the same record: the same files
 /// (VTK frames included), with the same history.csv, events.csv, cycles.csv and `.pvd`
 /// collections. `rewind`: the last part goes on from the first part's checkpoint instead of its
 /// own, as after a run killed long after its last checkpoint, so that what the killed run wrote
@@ -53,6 +57,9 @@ fn part(
 fn resumed_equals_straight(case: &str, sets: &[&str], stops: &[Stop], rewind: bool, label: &str) -> RunSummary {
     let straight_out = scratch(&format!("restart-{label}-straight"));
     let straight = part(case, sets, &straight_out, false, None).unwrap_or_else(|e| panic!("{e}"));
+    assert!(!straight_out.join("restart.bin").exists(), "the straight run writes no checkpoint in its 10 minutes");
+    // the parts write a checkpoint at every commit and every damped-flow step
+    let sets: &Vec<&str> = &sets.iter().copied().chain(["output.checkpoint_minutes=0"]).collect();
     let parts_out = scratch(&format!("restart-{label}-parts"));
     for (k, &stop) in stops.iter().enumerate() {
         let error = part(case, sets, &parts_out, k > 0, Some(stop)).expect_err("a part stops before the end");
@@ -124,7 +131,6 @@ fn a_plastic_adhesive_sphere_stopped_inside_snaps_and_resumed_writes_the_same_hi
         "mesh.parameters.r_fine=40.0",
         "amplitudes.cycle.value=[0.0, 1.0, -1.0]",
         "output.vtk=false",
-        "output.checkpoint_minutes=0",
         "solver.threads=1",
     ];
     let summary = resumed_equals_straight(
@@ -142,7 +148,7 @@ fn a_plastic_adhesive_sphere_stopped_inside_snaps_and_resumed_writes_the_same_hi
 /// the yielding body, with VTK output: stopped during loading and unloading.
 #[test]
 fn the_rough_sphere_stopped_twice_and_resumed_writes_the_same_history_as_one_run() {
-    let sets = ["output.checkpoint_minutes=0", "solver.threads=1", "solver.refactorization_cost_ratio=20"];
+    let sets = ["solver.threads=1", "solver.refactorization_cost_ratio=20"];
     let summary = resumed_equals_straight(
         "cases/ru-rough-sphere/rough-w6-quick.toml",
         &sets,
@@ -158,7 +164,7 @@ fn the_rough_sphere_stopped_twice_and_resumed_writes_the_same_history_as_one_run
 /// written after it are cut back and written again).
 #[test]
 fn cohesive_elements_stopped_in_softening_and_resumed_write_the_same_history_as_one_run() {
-    let sets = ["output.checkpoint_minutes=0", "solver.threads=1", "solver.refactorization_cost_ratio=20"];
+    let sets = ["solver.threads=1", "solver.refactorization_cost_ratio=20"];
     resumed_equals_straight(
         "cases/validation/mixed-mode-blocks.toml",
         &sets,
@@ -207,6 +213,7 @@ fn a_sweep_stopped_in_its_first_run_and_resumed_writes_the_same_runs_as_one_swee
             "output.vtk=false",
             "output.checkpoint_minutes=0",
             "solver.threads=1",
+            "solver.refactorization_cost_ratio=20",
         ]
         .iter()
         .map(|s| s.to_string())

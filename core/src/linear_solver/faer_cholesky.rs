@@ -7,7 +7,7 @@
 //! the same symbolic structure is used for an LDL^T factorization.
 
 use super::ordering::{Ordering, nested_dissection};
-use super::{FactorKind, LinearSolver};
+use super::{FactorKind, LinearSolver, SavedFactor};
 use crate::error::{CoreError, Result};
 use crate::sparse::SparsityPattern;
 use dyn_stack::{MemBuffer, MemStack, StackReq};
@@ -105,7 +105,11 @@ impl<T: faer::traits::ComplexField + Copy> Numeric<T> {
 
 /// The factor and, for a single-precision one, what refinement needs.
 enum Factor {
-    Double(Numeric<f64>),
+    Double {
+        numeric: Numeric<f64>,
+        /// The matrix factored (what remakes the factor from a checkpoint).
+        matrix: Vec<f64>,
+    },
     Single {
         numeric: Numeric<f32>,
         /// The matrix factored (f64, for the refinement residual) and its f32 copy.
@@ -161,7 +165,10 @@ impl FaerCholesky {
         let workspace = MemBuffer::try_new(req)
             .map_err(|_| CoreError::Factorization("out of memory for the factorization workspace".into()))?;
         let factor = match precision {
-            Precision::Double => Factor::Double(Numeric { values: vec![0.0; symbolic.len_val()], kind: None }),
+            Precision::Double => Factor::Double {
+                numeric: Numeric { values: vec![0.0; symbolic.len_val()], kind: None },
+                matrix: Vec::new(),
+            },
             Precision::Single => Factor::Single {
                 numeric: Numeric { values: vec![0.0; symbolic.len_val()], kind: None },
                 matrix: Vec::new(),
@@ -178,7 +185,7 @@ impl FaerCholesky {
     /// other) with the last factorization, in one pass over the factor: for many right-hand
     /// sides at once. Needs a double-precision factor.
     pub fn solve_columns_in_place(&mut self, rhs: &mut [f64], n_rhs: usize) -> Result<()> {
-        let Factor::Double(numeric) = &self.factor else {
+        let Factor::Double { numeric, .. } = &self.factor else {
             return Err(CoreError::Factorization("solving many columns needs a double-precision factor".into()));
         };
         if n_rhs == 0 || !rhs.len().is_multiple_of(n_rhs) {
@@ -197,7 +204,7 @@ impl FaerCholesky {
     /// The kind of the last successful factorization.
     pub fn last_kind(&self) -> Option<FactorKind> {
         match &self.factor {
-            Factor::Double(n) => n.kind,
+            Factor::Double { numeric, .. } => numeric.kind,
             Factor::Single { numeric, .. } => numeric.kind,
         }
     }
@@ -246,6 +253,18 @@ fn refine(
     Ok(false)
 }
 
+/// The f64 factor of a single-precision solver's `matrix` (made when refinement fails).
+fn factorize_in_double(
+    fallback: &mut Numeric<f64>,
+    (symbolic, matrix, pattern): (&SymbolicCholesky<usize>, &[f64], &SparsityPattern),
+    par: Par,
+    workspace: &mut MemBuffer,
+) -> Result<FactorKind> {
+    fallback.values.resize(symbolic.len_val(), 0.0);
+    let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
+    fallback.factorize(symbolic, SparseColMatRef::new(sym, matrix), par, workspace)
+}
+
 impl LinearSolver for FaerCholesky {
     fn analyse(pattern: &SparsityPattern) -> Result<Self> {
         Self::analyse_with(pattern, Ordering::default())
@@ -257,13 +276,42 @@ impl LinearSolver for FaerCholesky {
 
     fn precision_fallbacks(&self) -> usize {
         match &self.factor {
-            Factor::Double(_) => 0,
+            Factor::Double { .. } => 0,
             Factor::Single { fallbacks, .. } => *fallbacks,
         }
     }
 
     fn factorizations(&self) -> u64 {
         self.factorizations
+    }
+
+    fn saved_factor(&self) -> Option<SavedFactor> {
+        let (kind, matrix, in_double) = match &self.factor {
+            Factor::Double { numeric, matrix } => (numeric.kind, matrix, false),
+            Factor::Single { numeric, matrix, fallback, .. } => (numeric.kind, matrix, fallback.kind.is_some()),
+        };
+        kind?;
+        Some(SavedFactor { values: matrix.clone(), factorizations: self.factorizations, in_double })
+    }
+
+    fn restore_factor(&mut self, pattern: &SparsityPattern, saved: &SavedFactor) -> Result<()> {
+        if saved.values.len() != pattern.nnz() {
+            return Err(CoreError::Invalid(format!(
+                "a saved factor of {} matrix values for a pattern of {}",
+                saved.values.len(),
+                pattern.nnz()
+            )));
+        }
+        self.factorize(pattern, &saved.values)?;
+        if let Factor::Single { matrix, pattern, fallback, .. } = &mut self.factor
+            && saved.in_double
+        {
+            // the saving solver had fallen back to double precision on this matrix: so does
+            // this one (not counted again as a fallback)
+            factorize_in_double(fallback, (&self.symbolic, matrix, pattern), self.par, &mut self.workspace)?;
+        }
+        self.factorizations = saved.factorizations;
+        Ok(())
     }
 
     fn factorize(&mut self, pattern: &SparsityPattern, values: &[f64]) -> Result<FactorKind> {
@@ -273,7 +321,9 @@ impl LinearSolver for FaerCholesky {
         self.factorizations += 1;
         let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
         match &mut self.factor {
-            Factor::Double(numeric) => {
+            Factor::Double { numeric, matrix } => {
+                matrix.clear();
+                matrix.extend_from_slice(values);
                 numeric.factorize(&self.symbolic, SparseColMatRef::new(sym, values), self.par, &mut self.workspace)
             }
             Factor::Single { numeric, matrix, matrix_f32, fallback, .. } => {
@@ -290,23 +340,19 @@ impl LinearSolver for FaerCholesky {
 
     fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
         match &mut self.factor {
-            Factor::Double(numeric) => numeric.solve(&self.symbolic, (rhs, 1), self.par, &mut self.workspace)?,
+            Factor::Double { numeric, .. } => numeric.solve(&self.symbolic, (rhs, 1), self.par, &mut self.workspace)?,
             Factor::Single { numeric, matrix, pattern, fallback, fallbacks, .. } => {
                 let refined = fallback.kind.is_none()
                     && refine(numeric, (&self.symbolic, matrix, pattern), rhs, self.par, &mut self.workspace)?;
                 if !refined {
                     if fallback.kind.is_none() {
                         *fallbacks += 1;
-                        fallback.values.resize(self.symbolic.len_val(), 0.0);
-                        let sym = SymbolicSparseColMatRef::new_checked(
-                            pattern.n,
-                            pattern.n,
-                            &pattern.col_ptr,
-                            None,
-                            &pattern.row_idx,
-                        );
-                        let a = SparseColMatRef::new(sym, &matrix[..]);
-                        fallback.factorize(&self.symbolic, a, self.par, &mut self.workspace)?;
+                        factorize_in_double(
+                            fallback,
+                            (&self.symbolic, matrix, pattern),
+                            self.par,
+                            &mut self.workspace,
+                        )?;
                     }
                     fallback.solve(&self.symbolic, (rhs, 1), self.par, &mut self.workspace)?;
                 }

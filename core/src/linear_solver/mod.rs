@@ -17,6 +17,20 @@ pub use ordering::Ordering;
 use crate::error::Result;
 use crate::sparse::SparsityPattern;
 
+/// What remakes a linear solver's factor in another process ([`LinearSolver::saved_factor`]):
+/// a checkpoint holds it, so that a resumed run solves with the factor the saving run held.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SavedFactor {
+    /// The values of the matrix factored, on the solver's pattern.
+    pub values: Vec<f64>,
+    /// The solver's count of factorizations begun when it was made
+    /// ([`LinearSolver::factorizations`], which names the factor held).
+    pub factorizations: u64,
+    /// A reduced-precision solver had refactored it in double precision (its refinement did
+    /// not converge on this matrix).
+    pub in_double: bool,
+}
+
 /// Which numeric factorization the last call used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FactorKind {
@@ -48,5 +62,16 @@ pub trait LinearSolver {
     /// refinement did not converge on them (0 for a solver without reduced precision).
     fn precision_fallbacks(&self) -> usize {
         0
+    }
+    /// The factor held, as what remakes it (None: none held, or a solver that cannot say).
+    fn saved_factor(&self) -> Option<SavedFactor> {
+        None
+    }
+    /// Remakes the factor `saved` describes (from a solver analysed on the same `pattern`), and
+    /// takes up its count of factorizations, so that the solves after it are those the saving
+    /// solver's would have been. The default cannot: an error says so.
+    fn restore_factor(&mut self, pattern: &SparsityPattern, saved: &SavedFactor) -> Result<()> {
+        let _ = (pattern, saved);
+        Err(crate::error::CoreError::Factorization("this linear solver cannot remake a saved factor".into()))
     }
 }

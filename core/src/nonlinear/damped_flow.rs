@@ -489,6 +489,8 @@ pub enum FlowEnd {
 pub struct FlowState {
     /// What the flow took so far.
     pub report: FlowReport,
+    /// The time the flow moves at (a rolled-back problem's time is its last commit's).
+    t: f64,
     scales: ReferenceScales,
     /// Where the flow started (the snap's move so far is measured from it).
     origin: Vec<f64>,
@@ -523,6 +525,7 @@ impl FlowState {
         let origin = problem.free_values();
         Ok(Self {
             report,
+            t: problem.time(),
             scales,
             u_n: origin.clone(),
             committed: origin.clone(),
@@ -552,7 +555,6 @@ pub fn follow_damped_flow(
 ) -> std::result::Result<FlowEnd, IncrementFailure> {
     let newton = solver.settings().clone();
     let tol = settings.tolerance;
-    let t = problem.time();
     let mut s = match start {
         FlowStart::Resumed(state) => *state,
         FlowStart::Fresh(scales) => {
@@ -567,7 +569,7 @@ pub fn follow_damped_flow(
             FlowState::start(problem, mass, linear, scales, tol, report)?
         }
     };
-    let scales = s.scales;
+    let (t, scales) = (s.t, s.scales);
     let force_scale = |p: &dyn NonlinearProblem| newton.force_scale(p.force_norm(), scales);
     // the wrapped problem's residual at an accepted step is the static one, r(u_n) (= -M v_n
     // up to the step's solve): at rest when that passes the solver's residual test

@@ -132,10 +132,19 @@ pub trait NonlinearSolver {
     ) -> Result<IncrementReport, IncrementFailure>;
     /// The settings (convergence test, iteration limits) this solver applies.
     fn settings(&self) -> &NewtonSettings;
-    /// Forgets what the solver learned from earlier increments (a factor it reuses, how its
-    /// last increments went), as a solver made now would be: at a checkpoint, so that a run
-    /// resumed from it in another process goes on the same way. The default keeps nothing.
-    fn start_afresh(&mut self) {}
+    /// What the solver carries from one increment to the next that its decisions depend on
+    /// (which factor it reuses, how its last increments went), as bytes for a checkpoint
+    /// (empty: nothing, as for Newton). The factor itself is the linear solver's
+    /// ([`LinearSolver::saved_factor`]).
+    fn saved_state(&self) -> Vec<u8> {
+        Vec::new()
+    }
+    /// Takes up `saved` ([`Self::saved_state`] of a solver of the same kind, whose linear
+    /// solver's factor has been remade); state of another kind (the method changed on resume)
+    /// is not this solver's, and leaves it as made.
+    fn restore_state(&mut self, saved: &[u8]) {
+        let _ = saved;
+    }
     /// Moves the problem's trial state (the committed state) along the tangent from `t0` to
     /// `t1` ([`tangent_predictor`]); `rate_step` is the step of the difference in t, the costs
     /// go to `report`. The default factorizes the committed tangent; a solver that keeps a

@@ -83,6 +83,22 @@ impl QuasiNewtonSolver {
     }
 }
 
+/// The first bytes of the quasi-Newton solver's saved state.
+const SAVED_STATE_TAG: &[u8] = b"quasi-newton 1\n";
+
+/// What the quasi-Newton solver carries between increments (see
+/// [`NonlinearSolver::saved_state`]): the factor it reuses (named by the linear solver's count,
+/// which a remade factor takes up), the tangent's definiteness, the full-Newton stretch, the
+/// costs and the factor's age. BFGS pairs live within one increment.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct SavedState {
+    factor: Option<OwnFactor>,
+    indefinite: bool,
+    newton: NewtonStretch,
+    costs: Costs,
+    increments_on_factor: usize,
+}
+
 /// A factor's relative change of the mass coefficient c beyond which a time integrator's step
 /// rebuilds its iteration matrix K + c M (CVODE's `dgmax`, 0.3).
 pub const MASS_COEFFICIENT_CHANGE: f64 = 0.3;
@@ -90,7 +106,7 @@ pub const MASS_COEFFICIENT_CHANGE: f64 = 0.3;
 /// Which factor the solver made: the linear solver's count of factorizations right after it
 /// (so a later factorization by anyone else shows), and the mass coefficient c of the matrix
 /// K + c M it factorized (None: K, the tangent of an equilibrium solve).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 struct OwnFactor {
     identity: u64,
     mass_coefficient: Option<f64>,
@@ -165,10 +181,26 @@ impl NonlinearSolver for QuasiNewtonSolver {
         &self.settings
     }
 
-    /// Drops the factor and the increments' record; the refactorization costs (measured or
-    /// fixed) are kept.
-    fn start_afresh(&mut self) {
-        *self = Self { slow_ratio: self.slow_ratio, costs: self.costs, ..Self::new(self.settings.clone()) };
+    fn saved_state(&self) -> Vec<u8> {
+        let state = SavedState {
+            factor: self.factor,
+            indefinite: self.indefinite,
+            newton: self.newton,
+            costs: self.costs,
+            increments_on_factor: self.increments_on_factor,
+        };
+        let mut bytes = SAVED_STATE_TAG.to_vec();
+        bytes.extend(postcard::to_allocvec(&state).expect("plain numbers serialize"));
+        bytes
+    }
+
+    fn restore_state(&mut self, saved: &[u8]) {
+        let state = saved.strip_prefix(SAVED_STATE_TAG).and_then(|body| postcard::from_bytes::<SavedState>(body).ok());
+        if let Some(s) = state {
+            (self.factor, self.indefinite, self.newton) = (s.factor, s.indefinite, s.newton);
+            self.costs = self.costs.resumed(s.costs);
+            self.increments_on_factor = s.increments_on_factor;
+        }
     }
 
     /// The tangent predictor on the solver's own factor when it holds one; otherwise on a
@@ -242,7 +274,7 @@ pub const FIRST_NEWTON_STRETCH: usize = 4;
 
 /// The increments full Newton solves after the quasi-Newton iterations failed one: the failed
 /// increment and 3 more after the first failure, twice as many after each further one.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
 struct NewtonStretch {
     /// Increments full Newton still solves.
     left: usize,

@@ -39,7 +39,7 @@ pub(super) fn rate_is_trusted(pairs_in_step: usize, increments_on_factor: usize)
 const NEWEST_WEIGHT: f64 = 0.2;
 
 /// The costs that decide when refactorizing pays: measured (seconds), or a fixed ratio.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
 pub(super) struct Costs {
     /// A tangent assembly plus a numeric factorization.
     refactorization: f64,
@@ -60,6 +60,12 @@ impl Costs {
     /// Costs priced in the fixed ratio `ratio` of a refactorization to an iteration.
     pub fn with_fixed_ratio(ratio: f64) -> Self {
         Self { fixed_ratio: Some(ratio), ..Self::default() }
+    }
+
+    /// These costs with the means measured by `saved` (a checkpointed solver's), the fixed
+    /// ratio (if any) this solver's own.
+    pub fn resumed(self, saved: Costs) -> Self {
+        Self { fixed_ratio: self.fixed_ratio, ..saved }
     }
 
     /// A refactorization took `seconds` (tangent assembly and numeric factorization).

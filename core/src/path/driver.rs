@@ -35,7 +35,8 @@
 //! stabilized tangents for the attempts after it, and a failed snap is retried on the other
 //! tangent before the run stops ([`TangentSwitch`], `solver.tangent`).
 //!
-//! Checkpoints: the committed state is written between increments as the plan asks, and when
+//! Checkpoints: the committed state is written between increments as the plan asks (and
+//! between the steps of a damped-flow snap, with the snap under way: [`snapping`]), and when
 //! the run fails or is stopped; [`resume_steps`] goes on from one in another process
 //! ([`checkpointing`]).
 
@@ -251,8 +252,7 @@ impl<'a> Driver<'a> {
     /// Runs the steps from step `first` (starting at `step_start`; `resumed`: the step is
     /// under way, its increment size and output count carry on, and a snap the checkpoint was
     /// taken in goes on first) to the end, then finishes.
-    fn run_from(mut self, first: usize, step_start: f64, resumed: bool) -> Result<RunSummary> {
-        let (mut first, mut step_start, mut resumed) = (first, step_start, resumed);
+    fn run_from(mut self, mut first: usize, mut step_start: f64, mut resumed: bool) -> Result<RunSummary> {
         let mut ending = None;
         if resumed && self.snap_in_progress.is_some() {
             match self.resume_snap()? {

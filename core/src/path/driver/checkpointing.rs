@@ -13,12 +13,14 @@
 //! ([`crate::model::ModelState`]); the driver's (time, step, the load control's increment and
 //! predictor, the crawl and snap counters, the interfaces' records, the summary so far); and
 //! each observer's record ([`crate::record::Observer::saved_state`]: how far its files had
-//! got). Only what is rebuilt the same way is left out: the pattern and the symbolic
-//! factorization, the damped flow's drag matrix, and the solver's numeric factor. So that a
-//! resumed run follows the same path as one that ran through, writing a checkpoint also makes
-//! the nonlinear solver start afresh ([`crate::nonlinear::NonlinearSolver::start_afresh`]: one
-//! more factorization); with a solver whose decisions do not depend on measured times, a run
-//! stopped at a checkpoint and resumed writes the same history.csv, to the last digit.
+//! got); and the solvers' ([`crate::linear_solver::LinearSolver::saved_factor`]: the matrix
+//! of the factor held, which the resumed run factorizes again, and
+//! [`crate::nonlinear::NonlinearSolver::saved_state`]: which factor the quasi-Newton solver
+//! reuses, how its last increments went). Only what is rebuilt the same way is left out: the
+//! pattern and the symbolic factorization, and the damped flow's drag matrix. Writing a
+//! checkpoint changes nothing in the run, and with a solver whose decisions do not depend on
+//! measured times (and the same number of threads) a run stopped at a checkpoint and resumed
+//! writes the same history.csv as one that ran through without checkpoints, to the last digit.
 //!
 //! A run that fails or is stopped in the middle of a crossing resumes under load control from
 //! the crossing's last commit; a failed run's checkpoint resumes with the increment size and the
@@ -27,6 +29,7 @@
 use super::{Driver, Ending, PathState, SnapInProgress};
 use crate::checkpoint::{self, ModelState};
 use crate::error::{CoreError, Result};
+use crate::linear_solver::SavedFactor;
 use crate::path::load_control::LoadControlState;
 use crate::path::tangent_choice::TangentSwitch;
 use crate::record::{InterfaceTracker, ObserverState, RunSummary};
@@ -66,6 +69,10 @@ struct DriverState {
     /// The snap the checkpoint was taken in, with its damped flow's state (see
     /// [`super::snapping`]).
     snap: Option<SnapInProgress>,
+    /// The linear solver's factor and the nonlinear solver's state, so that the resumed run's
+    /// solvers decide as the saving run's went on to.
+    linear: Option<SavedFactor>,
+    nonlinear: Vec<u8>,
 }
 
 /// Totals of the parts of a run before it was resumed that the summary takes from counters
@@ -123,7 +130,6 @@ impl Driver<'_> {
         let record =
             Checkpoint { fingerprint: plan.fingerprint.clone(), model: self.model.saved_state(), driver, observers };
         checkpoint::write(&plan.path, &record)?;
-        self.nonlinear.start_afresh();
         self.last_checkpoint = (Instant::now(), self.summary.increments);
         let inside = match &self.snap_in_progress {
             Some(SnapInProgress { target, flow: Some(flow), .. }) => {
@@ -161,6 +167,8 @@ impl Driver<'_> {
             tracker: self.tracker.clone(),
             summary: self.summary.clone(),
             snap: self.snap_in_progress.clone(),
+            linear: self.linear.saved_factor(),
+            nonlinear: self.nonlinear.saved_state(),
         }
     }
 
@@ -174,7 +182,14 @@ impl Driver<'_> {
             let message = format!("is at step {}, the run has {}", step + 1, self.plan.steps.len());
             return Err(CoreError::Checkpoint { path: file, message });
         }
-        self.model.restore_state(&model).map_err(|message| CoreError::Checkpoint { path: file, message })?;
+        self.model.restore_state(&model).map_err(|message| CoreError::Checkpoint { path: file.clone(), message })?;
+        if let Some(factor) = &d.linear {
+            self.linear.restore_factor(self.model.pattern(), factor).map_err(|e| CoreError::Checkpoint {
+                path: file,
+                message: format!("its linear solver's factor could not be remade: {e}"),
+            })?;
+        }
+        self.nonlinear.restore_state(&d.nonlinear);
         self.load.start_step(&self.plan.steps[step].incrementation);
         self.load.restore(d.load);
         self.path = d.path;
