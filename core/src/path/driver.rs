@@ -64,7 +64,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 pub mod checkpointing;
-mod snapping;
+pub mod snapping;
 pub use checkpointing::Checkpoint;
 use checkpointing::EarlierParts;
 use snapping::SnapInProgress;
@@ -133,11 +133,11 @@ pub struct RunPlan {
 /// How a snap (a jump at a fixed load to the stable state the system reaches) is solved.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SnapMethod {
-    /// Along the overdamped motion M du/dtau = -r(u) ([`damped_flow`]): the state depends
+    /// Along the overdamped motion M du/dtau = -r(u) ([`crate::nonlinear::damped_flow::damped_flow`]): the state depends
     /// on the path where the body yields or a law is hysteretic, and this path has no free
     /// parameter and converges with the mesh. Problems without a mass settle instead.
     DampedFlow(FlowSettings),
-    /// By descent from the committed state ([`settle`]): cheaper, the same state for an
+    /// By descent from the committed state ([`crate::nonlinear::settle::settle`]): cheaper, the same state for an
     /// elastic body with one stable state in reach, a one-step plastic update otherwise.
     Settle,
 }

@@ -6,9 +6,9 @@
 //! adhesion: hours). It is paused between its steps when a checkpoint is due and when the run
 //! is interrupted (Ctrl-C, [`super::RunPlan::interrupt`]) or asked to stop there
 //! ([`super::RunPlan::stop_after_flow_steps`]): the checkpoint then holds the snap under way
-//! ([`SnapInProgress`]: its target, its reason, and the flow's [`FlowState`]) beside the
+//! (`SnapInProgress`: its target, its reason, and the flow's [`FlowState`]) beside the
 //! model's committed state, which is the flow's last committed step. A run resumed from it
-//! goes on with the same flow ([`Driver::resume_snap`]), as if it had not stopped.
+//! goes on with the same flow (`Driver::resume_snap`), as if it had not stopped.
 
 use super::{Driver, Flow, MAX_SNAPS_WITHOUT_PROGRESS, SnapMethod, Via};
 use crate::error::{CoreError, Result};
