@@ -35,11 +35,12 @@ pub fn run_sweep(path: &Path, sets: &[String], options: &RunOptions) -> Result<V
         return Err(base.error("sweep.values", "needs at least one value"));
     }
     let out = output_directory(&base, options);
-    let plan = serde_json::json!({ "fingerprint": crate::resume::fingerprint(&base) }).to_string();
+    let fingerprint = crate::resume::fingerprint(&base);
     if options.resume {
-        check_same_sweep(&base, &out, &plan)?;
+        check_same_sweep(&base, &out, &fingerprint)?;
     } else {
         crate::output_folder::prepare(&out, options.overwrite)?;
+        let plan = serde_json::json!({ "fingerprint": fingerprint }).to_string();
         write_atomically(&out.join(SWEEP_PLAN), plan.as_bytes())?;
     }
     let label = sweep.label.clone().unwrap_or_else(|| sweep.key.clone());
@@ -71,9 +72,9 @@ pub fn run_sweep(path: &Path, sets: &[String], options: &RunOptions) -> Result<V
     Ok(summaries)
 }
 
-/// Ok when the sweep recorded in `out` ([`SWEEP_PLAN`]) is the one `plan` describes; Err says
-/// why it cannot be resumed (none recorded, or the first key that differs).
-fn check_same_sweep(base: &LoadedCase, out: &Path, plan: &str) -> Result<()> {
+/// Ok when the sweep recorded in `out` ([`SWEEP_PLAN`]) has the fingerprint `now` (the case
+/// given); Err says why it cannot be resumed (none recorded, or the first key that differs).
+fn check_same_sweep(base: &LoadedCase, out: &Path, now: &str) -> Result<()> {
     let path = out.join(SWEEP_PLAN);
     let Ok(text) = std::fs::read_to_string(&path) else {
         return Err(StictionError::Output {
@@ -85,16 +86,15 @@ fn check_same_sweep(base: &LoadedCase, out: &Path, plan: &str) -> Result<()> {
             ),
         });
     };
-    let fingerprint = |text: &str| {
-        serde_json::from_str::<serde_json::Value>(text).ok().and_then(|v| v["fingerprint"].as_str().map(String::from))
-    };
-    let (Some(saved), Some(now)) = (fingerprint(&text), fingerprint(plan)) else {
+    let saved =
+        serde_json::from_str::<serde_json::Value>(&text).ok().and_then(|v| v["fingerprint"].as_str().map(String::from));
+    let Some(saved) = saved else {
         return Err(StictionError::Output {
             path,
             message: "is not a sweep record (expected JSON with a \"fingerprint\" string)".into(),
         });
     };
-    crate::resume::check_same_problem(base, &path, &saved, &now)
+    crate::resume::check_same_problem(base, &path, &saved, now)
 }
 
 /// One value's run of a resumed sweep, in `folder`: kept where it completed (its summary read
