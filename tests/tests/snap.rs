@@ -7,7 +7,8 @@
 //! and the same most tensile force on the contact branch. The two ways to solve a snap, by
 //! descent (what "auto", the default, takes for this body) and along the damped flow, must
 //! land on the same state of this elastic body (one stable state in reach: its path does not
-//! matter). A start out of equilibrium snaps at its first failed attempt, without cuts.
+//! matter), and report the same energy dissipated by the snaps (the potential energy's fall).
+//! A start out of equilibrium snaps at its first failed attempt, without cuts.
 
 use stiction_tests::run_case;
 
@@ -78,4 +79,23 @@ fn a_start_inside_the_jump_in_range_snaps_to_the_state_a_far_start_reaches() {
     }
     let far_log = std::fs::read_to_string(far.output_directory.join("messages.log")).unwrap();
     assert!(!far_log.contains("out of equilibrium"), "{far_log}");
+    // the energy the snaps dissipated is the fall of the potential energy from where each snap
+    // starts to where it lands, whatever the path: the descent's (by Simpson's rule along the
+    // straight segment) and the damped flow's (the drag's work, by the trapezoid rule along
+    // its steps) must agree to the flow's accuracy; the history's last row holds the total
+    let (by_descent, by_flow) = (near.snap_dissipation, flowed.snap_dissipation);
+    println!("energy dissipated by the snaps: descent {by_descent}, damped flow {by_flow}");
+    assert!(by_descent > 0.0 && (by_flow / by_descent - 1.0).abs() < 2e-3, "{by_flow} vs {by_descent}");
+    for s in [&near, &flowed] {
+        let text = std::fs::read_to_string(s.output_directory.join("history.csv")).unwrap();
+        let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+        let col = header.iter().position(|h| *h == "snap_dissipation").expect("a snap_dissipation column");
+        let last: f64 = text.lines().last().unwrap().split(',').nth(col).unwrap().parse().unwrap();
+        // (history.csv holds 11 significant digits)
+        assert!(
+            (last / s.snap_dissipation - 1.0).abs() < 1e-9,
+            "history.csv's {last} against summary.json's {}",
+            s.snap_dissipation
+        );
+    }
 }

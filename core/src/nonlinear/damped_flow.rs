@@ -144,6 +144,19 @@ pub struct FlowReport {
     /// Set when the flow ended because its steps stalled near rest: the end state's static
     /// residual over the solver's residual test (at most [`STALLED_REST_FACTOR`]).
     pub stalled_at_residual_ratio: Option<f64>,
+    /// The energy the drag took: D = int v.(M v) dtau = -int r(u).du along the flow, by the
+    /// trapezoid rule over its accepted steps, -sum (r_n + r_(n+1)).(u_(n+1) - u_n) / 2, with
+    /// the static residuals r at the accepted states (exact for a quadratic energy, whatever the
+    /// steps). It is the energy the snap released and the body did not dissipate plastically
+    /// (nor a law hysteretically) on the way: what an inertial snap turns into motion, waves
+    /// and heat.
+    pub drag_dissipation: f64,
+}
+
+/// The trapezoid rule's -int r.du from `u_a` (residual `r_a`) to `u_b` (residual `r_b`) along
+/// the straight segment between them: the energy a descent along it releases.
+pub fn released_along_segment(u_a: &[f64], r_a: &[f64], u_b: &[f64], r_b: &[f64]) -> f64 {
+    -0.5 * u_a.iter().zip(u_b).zip(r_a.iter().zip(r_b)).map(|((a, b), (ra, rb))| (b - a) * (ra + rb)).sum::<f64>()
 }
 
 /// One step of the flow as a problem of its own: residual r(u) + M (u - start)/(beta h),
@@ -507,6 +520,8 @@ pub struct FlowState {
     tail_bar: f64,
     /// The static residual of the last accepted state, which a failure reports.
     committed_residual: f64,
+    /// The static residual vector at the last accepted state (for the drag's dissipation).
+    residual_n: Vec<f64>,
 }
 
 impl FlowState {
@@ -520,7 +535,8 @@ impl FlowState {
         tolerance: f64,
         mut report: FlowReport,
     ) -> Result<Self> {
-        let committed_residual = norm(problem.residual());
+        let residual_n = problem.residual().to_vec();
+        let committed_residual = norm(&residual_n);
         let (v, h) = start_velocity(problem, mass, linear, tolerance, &mut report.costs)?;
         let origin = problem.free_values();
         Ok(Self {
@@ -538,6 +554,7 @@ impl FlowState {
             commit_bar: tolerance * 1e-3 * scales.displacement,
             tail_bar: f64::INFINITY,
             committed_residual,
+            residual_n,
         })
     }
 }
@@ -621,6 +638,8 @@ pub fn follow_damped_flow(
             s.report.commits += 1;
         }
         s.report.steps += 1;
+        s.report.drag_dissipation += released_along_segment(&s.u_n, &s.residual_n, &u, problem.residual());
+        s.residual_n.copy_from_slice(problem.residual());
         let decay = norm(&v_new) / norm(&s.v);
         let (u_prev, v_prev) = (std::mem::replace(&mut s.u_n, u), std::mem::replace(&mut s.v, v_new));
         if kink {
@@ -644,6 +663,8 @@ pub fn follow_damped_flow(
         s.commit_bar = negligible;
         if to_come < negligible && to_come < s.tail_bar {
             if end_directly(problem, solver, linear, scales, &s.u_n, negligible, &mut s.report) {
+                let end = problem.free_values();
+                s.report.drag_dissipation += released_along_segment(&s.u_n, &s.residual_n, &end, problem.residual());
                 return Ok(FlowEnd::Settled(s.report));
             }
             s.tail_bar = 0.5 * to_come;

@@ -208,7 +208,8 @@ fn root(a: f64, b: f64, t: f64) -> f64 {
 }
 
 /// From inside the unstable region, settling finds the stable equilibrium downhill of the
-/// start (never the unstable one Newton can land on), converging quadratically at the end.
+/// start (never the unstable one Newton can land on), converging quadratically at the end, and
+/// reports the fall of the energy on the way.
 #[test]
 fn settling_finds_the_stable_equilibrium_downhill_and_never_the_unstable_one() {
     use super::settle::settle;
@@ -219,9 +220,16 @@ fn settling_finds_the_stable_equilibrium_downhill_and_never_the_unstable_one() {
         let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
         p.set_time(t);
         p.set_free_values(&[start]);
-        let report = settle(&mut p, &mut linear, &settings(), ReferenceScales::default())
+        let settled = settle(&mut p, &mut linear, &settings(), ReferenceScales::default())
             .unwrap_or_else(|e| panic!("from {start}: {e}"));
+        let report = settled.report;
         let expected = root(lo, hi, t);
+        // the energy released is the fall of u^4/4 - u^2/2 - t u from the start to the root
+        let energy = |u: f64| u.powi(4) / 4.0 - u * u / 2.0 - t * u;
+        let fall = energy(start) - energy(expected);
+        // (Simpson's rule along each step is exact for this quartic energy)
+        let released = settled.released_energy;
+        assert!((released / fall - 1.0).abs() < 1e-12, "from {start}: released {released} against {fall}");
         assert!((p.u - expected).abs() < 1e-10, "from {start}: {} vs the stable root {expected}", p.u);
         assert!(double_well(p.u, t).1 > 0.0, "from {start}: an unstable equilibrium {}", p.u);
         // the last steps are Newton's: order from the last three residuals before convergence

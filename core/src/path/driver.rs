@@ -350,6 +350,9 @@ struct PathState {
     /// Damped-flow snaps that ended where their steps stalled near rest, and the largest
     /// residual over the test they ended at (see [`crate::nonlinear::damped_flow::STALLED_REST_FACTOR`]).
     stalled_snaps: (usize, f64),
+    /// The energy the snaps dissipated so far besides plastic flow (see
+    /// [`CommittedIncrement::snap_dissipation`]).
+    snap_dissipation: f64,
     /// The step under way and the time it started at.
     step: usize,
     step_start: f64,
@@ -420,6 +423,7 @@ impl Driver<'_> {
             fraction_done: 0.0,
             description: "initial state".into(),
             plastic_dissipation: self.model.dissipation(),
+            snap_dissipation: self.path.snap_dissipation,
         };
         // the interfaces' records start from the committed initial state
         self.tracker = InterfaceTracker::new(self.model, &self.plan.interfaces);
@@ -707,6 +711,7 @@ impl Driver<'_> {
             limit_point,
             by_arc_length,
             plastic_dissipation,
+            snap_dissipation: self.path.snap_dissipation,
         };
         let (events, separated) = self.tracker.update(self.model, context, step.until_separated);
         self.path.cuts_since_commit = 0;
@@ -754,6 +759,7 @@ impl Driver<'_> {
                 self.plan.steps[si].name, self.path.t, self.load.dt, report.iterations
             ),
             plastic_dissipation,
+            snap_dissipation: self.path.snap_dissipation,
         };
         for o in self.observers.iter_mut() {
             o.committed(self.model, &committed)?;
@@ -769,6 +775,7 @@ impl Driver<'_> {
         self.count_totals();
         let s = &mut self.summary;
         s.plastic_dissipation = self.model.dissipation();
+        s.snap_dissipation = self.path.snap_dissipation;
         s.max_equivalent_plastic_strain = self.model.max_material_output("equivalent_plastic_strain");
         (s.status, s.message) = match ending {
             None => ("completed".into(), None),

@@ -22,6 +22,9 @@ pub struct InterfaceSample {
     pub resistance: Option<f64>,
     /// The continuum's plastic dissipation (the whole model's) at this state.
     pub plastic_dissipation: f64,
+    /// The snaps' dissipation so far (the whole model's,
+    /// [`super::CommittedIncrement::snap_dissipation`]).
+    pub snap_dissipation: f64,
 }
 
 /// The key numbers of one load cycle.
@@ -41,6 +44,13 @@ pub struct CycleSummary {
     pub opening_work: f64,
     /// Net work of the flat over the cycle, integral of force d(approach).
     pub work_of_flat: f64,
+    /// The continuum's plastic dissipation over the cycle (the whole model's).
+    pub plastic_dissipation: f64,
+    /// The snaps' dissipation over the cycle (the whole model's). With the plastic dissipation
+    /// and the laws' own (hysteresis, viscosity) it balances the flat's work over a cycle that
+    /// ends in the state it started from: for an elastic body with a conservative law, the
+    /// work of the flat is the snaps' dissipation.
+    pub snap_dissipation: f64,
 }
 
 /// The resistance at one force level on loading and on unloading of the first cycle.
@@ -118,6 +128,9 @@ pub fn cycles(samples: &[InterfaceSample]) -> Vec<CycleSummary> {
                 }
             }
             c.max_force = max_force.max(0.0);
+            let (first, last) = (&part[0], &part[part.len() - 1]);
+            c.plastic_dissipation = last.plastic_dissipation - first.plastic_dissipation;
+            c.snap_dissipation = last.snap_dissipation - first.snap_dissipation;
             c
         })
         .collect()
@@ -188,14 +201,14 @@ impl Observer for CyclesWriter {
 
     fn finished(&mut self, _model: &Model, summary: &RunSummary) -> Result<()> {
         let mut text = String::from(
-            "interface,cycle,max_approach,max_force,pull_off_force,max_contact_area,contact_resistance_at_max_force,opening_work,work_of_flat\n",
+            "interface,cycle,max_approach,max_force,pull_off_force,max_contact_area,contact_resistance_at_max_force,opening_work,work_of_flat,plastic_dissipation,snap_dissipation\n",
         );
         let mut rows = 0;
         for i in &summary.interfaces {
             for c in &i.cycles {
                 let resistance = c.contact_resistance_at_max_force.map_or(String::new(), |r| format!("{r:.10e}"));
                 text.push_str(&format!(
-                    "{},{},{:.10e},{:.10e},{:.10e},{:.10e},{resistance},{:.10e},{:.10e}\n",
+                    "{},{},{:.10e},{:.10e},{:.10e},{:.10e},{resistance},{:.10e},{:.10e},{:.10e},{:.10e}\n",
                     i.name,
                     c.cycle,
                     c.max_approach,
@@ -203,7 +216,9 @@ impl Observer for CyclesWriter {
                     c.pull_off_force,
                     c.max_contact_area,
                     c.opening_work,
-                    c.work_of_flat
+                    c.work_of_flat,
+                    c.plastic_dissipation,
+                    c.snap_dissipation
                 ));
                 rows += 1;
             }
@@ -226,6 +241,7 @@ mod tests {
             contact_area: force.max(0.0),
             resistance: Some(resistance),
             plastic_dissipation: 0.0,
+            snap_dissipation: 0.0,
         }
     }
 

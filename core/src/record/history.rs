@@ -1,6 +1,6 @@
 //! `history.csv`: one row per committed state: step, increment, time, iterations, reactions
-//! per boundary group, mean displacements per loaded group, plastic dissipation, and each
-//! interface's observables.
+//! per boundary group, mean displacements per loaded group, plastic dissipation, the snaps'
+//! dissipation so far, and each interface's observables.
 
 use super::{CommittedIncrement, Observer, ObserverState, RunSummary};
 use crate::element::Kinematics;
@@ -42,6 +42,7 @@ impl HistoryRecorder {
             }
         }
         columns.push("plastic_dissipation".into());
+        columns.push("snap_dissipation".into());
         for c in &model.contributions {
             if let Some(o) = c.observables() {
                 columns.extend(o.columns().into_iter().map(|(name, _)| name.to_string()));
@@ -82,6 +83,7 @@ impl Observer for HistoryRecorder {
             }
         }
         row.push(Value::Real(increment.plastic_dissipation));
+        row.push(Value::Real(increment.snap_dissipation));
         for c in &model.contributions {
             if let Some(o) = c.observables() {
                 row.extend(o.columns().into_iter().map(|(_, v)| v));

@@ -33,6 +33,8 @@ pub struct CommitContext {
     pub by_arc_length: bool,
     /// The continuum's plastic dissipation at the committed state.
     pub plastic_dissipation: f64,
+    /// The snaps' dissipation so far ([`super::CommittedIncrement::snap_dissipation`]).
+    pub snap_dissipation: f64,
 }
 
 /// What an interface needs besides its observables: its kind and viscous-share limit.
@@ -51,14 +53,15 @@ pub struct InterfaceTracker {
     samples: Vec<Vec<InterfaceSample>>,
 }
 
-/// The state of an interface with a flat, with the model's plastic dissipation then.
-fn sample(o: &InterfaceObservables, plastic_dissipation: f64) -> Option<InterfaceSample> {
+/// The state of an interface with a flat, with the model's plastic and snap dissipation then.
+fn sample(o: &InterfaceObservables, context: CommitContext) -> Option<InterfaceSample> {
     Some(InterfaceSample {
         approach: o.approach?,
         force: o.force,
         contact_area: o.contact_area,
         resistance: o.contact_resistance,
-        plastic_dissipation,
+        plastic_dissipation: context.plastic_dissipation,
+        snap_dissipation: context.snap_dissipation,
     })
 }
 
@@ -108,8 +111,8 @@ impl InterfaceTracker {
             .collect();
         let n = model.contributions.len();
         let observed: Vec<InterfaceObservables> = (0..n).map(|k| observe(model, k)).collect();
-        let plastic = model.dissipation();
-        let samples = observed.iter().map(|o| sample(o, plastic).into_iter().collect()).collect();
+        let context = CommitContext { plastic_dissipation: model.dissipation(), ..Default::default() };
+        let samples = observed.iter().map(|o| sample(o, context).into_iter().collect()).collect();
         Self { summaries, observed, had_contact: vec![false; n], samples }
     }
 
@@ -129,7 +132,6 @@ impl InterfaceTracker {
     ) -> (Vec<InterfaceEvent>, bool) {
         let mut events = Vec::new();
         let mut separated = false;
-        let plastic = context.plastic_dissipation;
         for k in 0..self.summaries.len() {
             let now = observe(model, k);
             let before = self.observed[k];
@@ -138,12 +140,12 @@ impl InterfaceTracker {
                 events.push(e);
             }
             if context.limit_point
-                && let (Some(x), [.., a, b]) = (sample(&now, plastic), self.samples[k].as_slice())
+                && let (Some(x), [.., a, b]) = (sample(&now, context), self.samples[k].as_slice())
             {
                 self.summaries[k].folds.push(fold_between(model.time, a, b, &x));
             }
             self.had_contact[k] |= now.n_contact > 0;
-            if let Some(x) = sample(&now, plastic) {
+            if let Some(x) = sample(&now, context) {
                 self.samples[k].push(x);
             }
             self.observed[k] = now;
@@ -321,7 +323,14 @@ mod fold_tests {
     use super::*;
 
     fn at(force: f64, approach: f64) -> InterfaceSample {
-        InterfaceSample { approach, force, contact_area: 0.0, resistance: None, plastic_dissipation: 0.0 }
+        InterfaceSample {
+            approach,
+            force,
+            contact_area: 0.0,
+            resistance: None,
+            plastic_dissipation: 0.0,
+            snap_dissipation: 0.0,
+        }
     }
 
     /// On a parabolic fold a(F) = 1 - (F - 3)^2 the vertex (F = 3, a = 1) is recovered exactly

@@ -42,6 +42,12 @@ pub struct CommittedIncrement {
     /// The continuum's plastic dissipation at this state ([`Model::dissipation`]), integrated
     /// once per commit for every observer.
     pub plastic_dissipation: f64,
+    /// The energy the snaps so far dissipated besides plastic flow and the laws' own
+    /// hysteresis: -int r.du along each snap's path at its fixed load (a damped flow's drag,
+    /// int v.(M v) dtau; a descent's fall of potential energy). A quasi-static path has no
+    /// other place for the energy a snap releases; an inertial snap would turn it into motion,
+    /// waves and heat. ABAQUS reports the like for its stabilization as ALLSD.
+    pub snap_dissipation: f64,
 }
 
 /// Something that records the run.

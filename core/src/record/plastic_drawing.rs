@@ -70,7 +70,14 @@ mod tests {
     use super::*;
 
     fn at(approach: f64, force: f64, plastic_dissipation: f64) -> InterfaceSample {
-        InterfaceSample { approach, force, contact_area: 0.0, resistance: None, plastic_dissipation }
+        InterfaceSample {
+            approach,
+            force,
+            contact_area: 0.0,
+            resistance: None,
+            plastic_dissipation,
+            snap_dissipation: 0.0,
+        }
     }
 
     /// A pull-off followed by a hold at -10 over 2 units of retraction, all of it dissipated

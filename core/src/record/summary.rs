@@ -55,6 +55,9 @@ pub struct RunSummary {
     /// are those of the committed increments only).
     pub discarded_attempt_seconds: f64,
     pub plastic_dissipation: f64,
+    /// The energy the snaps dissipated besides plastic flow
+    /// ([`super::CommittedIncrement::snap_dissipation`]), over the whole run.
+    pub snap_dissipation: f64,
     /// The largest equivalent plastic strain of any integration point at the end (None without
     /// a plastic material).
     pub max_equivalent_plastic_strain: Option<f64>,

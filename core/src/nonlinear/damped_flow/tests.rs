@@ -467,3 +467,25 @@ fn a_flow_paused_at_every_step_and_taken_up_again_ends_where_the_straight_flow_d
     assert_eq!(paused.committed, straight.committed, "the same committed states, bit for bit");
     assert_eq!(paused.u, straight.u, "the same end");
 }
+
+/// The drag's dissipation is the energy the flow released: from (1, 1) to rest at the origin,
+/// the fall of the pair's energy sum_i k_i (u_i^2 / 2 + c u_i^4 / 4), 5.5 (linear) and 8.25
+/// (cubic). The trapezoid rule on the accepted states is exact for the linear pair whatever the
+/// steps, and second order in them for the cubic one.
+#[test]
+fn the_drag_dissipates_the_energy_the_flow_releases() {
+    let dissipated = |settings: FlowSettings, cubic: f64| {
+        let mut p = Pair::new([1.0, 1.0], cubic);
+        let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+        let scales = ReferenceScales::default();
+        damped_flow(&mut p, &[1.0, 1.0], &mut linear, &mut newton(), scales, &settings, &mut |_| {})
+            .unwrap()
+            .drag_dissipation
+    };
+    let linear = dissipated(tolerance(0.03), 0.0);
+    assert!((linear / 5.5 - 1.0).abs() < 1e-9, "linear: {linear} against 5.5");
+    let coarse = (dissipated(tolerance(0.03), 1.0) / 8.25 - 1.0).abs();
+    let fine = (dissipated(tolerance(0.003), 1.0) / 8.25 - 1.0).abs();
+    println!("cubic: relative error {coarse:.3e} (tolerance 0.03), {fine:.3e} (0.003)");
+    assert!(coarse < 1e-2 && fine < coarse / 3.0, "cubic: {coarse} (0.03), {fine} (0.003)");
+}

@@ -14,7 +14,7 @@ use super::{Driver, Flow, MAX_SNAPS_WITHOUT_PROGRESS, SnapMethod, Via};
 use crate::error::{CoreError, Result};
 use crate::nonlinear::damped_flow::follow_damped_flow;
 use crate::nonlinear::damped_flow::{FlowControl, FlowDamping, FlowEnd, FlowReport, FlowStart, FlowState};
-use crate::nonlinear::settle::settle;
+use crate::nonlinear::settle::{Settled, settle};
 use crate::nonlinear::{IncrementFailure, IncrementReport};
 use crate::path::StepWindow;
 use crate::problem::NonlinearProblem;
@@ -48,8 +48,9 @@ pub(super) struct SnapInProgress {
 
 /// How solving a snap ended.
 enum Snapped {
-    /// On a stable state (the model's trial state): the costs, and how it went.
-    Settled(IncrementReport, String),
+    /// On a stable state (the model's trial state): the costs, how it went, and the energy it
+    /// dissipated on the way besides plastic flow (a flow's drag, a descent's fall of energy).
+    Settled(IncrementReport, String, f64),
     /// No stable state found; `damped`: a damped flow committed some of its steps first.
     Failed { failure: IncrementFailure, damped: bool },
     /// The run was interrupted, or asked to stop, while a damped flow was under way: the snap
@@ -154,12 +155,15 @@ impl Driver<'_> {
         }
         let Some(snap) = self.snap_in_progress.take() else { return Ok(Flow::Continue) };
         let text = match &solved {
-            Snapped::Settled(_, how) => format!("{name}: snapped at t = {target:.6} ({how})"),
+            Snapped::Settled(_, how, released) => {
+                format!("{name}: snapped at t = {target:.6} ({how}; dissipated {released:.6e})")
+            }
             _ => format!("{name}: no stable state found at t = {target:.6}"),
         };
         self.observers.iter_mut().for_each(|o| o.message(&text));
         let flow = match solved {
-            Snapped::Settled(report, _) => {
+            Snapped::Settled(report, _, released) => {
+                self.path.snap_dissipation += released;
                 // a snap past the minimum increment moved the load on: progress
                 self.path.snaps_in_a_row =
                     if snap.dt > self.plan.steps[si].incrementation.minimum { 0 } else { self.path.snaps_in_a_row + 1 };
@@ -240,6 +244,7 @@ impl Driver<'_> {
             Err(failure) => return Ok((Snapped::Failed { failure, damped: true }, 0.0)),
         };
         let mut text = format!("{} damped flow steps, {} redone", f.steps, f.rejected);
+        let released = f.drag_dissipation;
         if f.kinks > 0 {
             text += &format!(", {} across kinks", f.kinks);
         }
@@ -249,7 +254,7 @@ impl Driver<'_> {
             self.path.stalled_snaps.1 = self.path.stalled_snaps.1.max(ratio);
         }
         let failed_seconds = f.failed_solve_seconds;
-        Ok((Snapped::Settled(f.costs, text), failed_seconds))
+        Ok((Snapped::Settled(f.costs, text, released), failed_seconds))
     }
 
     /// Follows the snap's damped flow on the drag matrix `mass` (from where it paused, if it
@@ -316,11 +321,11 @@ impl Driver<'_> {
 }
 
 /// A snap by descent as a [`Snapped`].
-fn settled_by_descent(settled: std::result::Result<IncrementReport, IncrementFailure>) -> Snapped {
+fn settled_by_descent(settled: std::result::Result<Settled, IncrementFailure>) -> Snapped {
     match settled {
-        Ok(report) => {
+        Ok(Settled { report, released_energy }) => {
             let text = format!("{} descent steps", report.iterations);
-            Snapped::Settled(report, text)
+            Snapped::Settled(report, text, released_energy)
         }
         Err(failure) => Snapped::Failed { failure, damped: false },
     }
