@@ -196,9 +196,10 @@ fn critical_point(problem: &mut dyn NonlinearProblem, u0: &[f64], d: &[f64], g0:
 #[derive(Debug, Clone, Default)]
 pub struct Settled {
     pub report: IncrementReport,
-    /// -int R.du from the start to the settled state ([`released_between`]): the
-    /// fall of the (incremental) potential energy from the start to
-    /// the settled state, what the snap dissipates besides the one-step plastic update.
+    /// -int R.du from the start to the settled state, by Simpson's rule along the straight
+    /// segment between them, refined to a relative 1e-5 (`released_between`): the fall of the
+    /// (incremental) potential energy, what the snap dissipates besides the one-step plastic
+    /// update.
     pub released_energy: f64,
 }
 
