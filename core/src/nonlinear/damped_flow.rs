@@ -154,8 +154,8 @@ pub struct FlowReport {
 }
 
 /// The trapezoid rule's -int r.du from `u_a` (residual `r_a`) to `u_b` (residual `r_b`) along
-/// the straight segment between them: the energy a descent along it releases.
-pub fn released_along_segment(u_a: &[f64], r_a: &[f64], u_b: &[f64], r_b: &[f64]) -> f64 {
+/// the straight segment between them.
+fn released_along_segment(u_a: &[f64], r_a: &[f64], u_b: &[f64], r_b: &[f64]) -> f64 {
     -0.5 * u_a.iter().zip(u_b).zip(r_a.iter().zip(r_b)).map(|((a, b), (ra, rb))| (b - a) * (ra + rb)).sum::<f64>()
 }
 
