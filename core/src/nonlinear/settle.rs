@@ -233,6 +233,10 @@ pub fn settle(
         };
         if converged {
             report.iterations = step;
+            if step == 0 {
+                // at rest where it started: nothing released
+                return Ok(Settled { report, released_energy: 0.0 });
+            }
             let settled = problem.free_values();
             let timer = Instant::now();
             let released_energy = released_between(problem, &origin, &settled)?;

@@ -227,7 +227,7 @@ fn settling_finds_the_stable_equilibrium_downhill_and_never_the_unstable_one() {
         // the energy released is the fall of u^4/4 - u^2/2 - t u from the start to the root
         let energy = |u: f64| u.powi(4) / 4.0 - u * u / 2.0 - t * u;
         let fall = energy(start) - energy(expected);
-        // (Simpson's rule along each step is exact for this quartic energy)
+        // (Simpson's rule along the straight segment is exact for this quartic energy)
         let released = settled.released_energy;
         assert!((released / fall - 1.0).abs() < 1e-12, "from {start}: released {released} against {fall}");
         assert!((p.u - expected).abs() < 1e-10, "from {start}: {} vs the stable root {expected}", p.u);
