@@ -3,7 +3,10 @@
 //!
 //! Refactorize when the iterations left at the observed residual ratio `rate`,
 //! ln(target / ||r||) / ln(rate), cost more than a refactorization and the iterations a fresh
-//! factor needs after it, or do not fit in the iterations left.
+//! factor needs after it, or do not fit in the iterations left. A time integrator's step (a
+//! damped flow's) converges on its correction instead, ||du||_inf below its tolerance, so there
+//! ||du|| and that tolerance take the places of ||r|| and the target (linear convergence shrinks
+//! both at the same rate).
 //!
 //! When the rate is trusted: the first steps on a factor are plain H0 steps, often several
 //! times slower than those once the BFGS update holds a few pairs (its superlinear phase). On a
@@ -87,16 +90,17 @@ impl Costs {
     }
 
     /// Whether to refactorize now: the iterations left at the observed rate `rate` (residual
-    /// ratio per iteration) to bring `residual` to `target` cost more than a refactorization
-    /// and the iterations after it, or would not fit in the `budget` of iterations left.
-    pub fn refactorize_pays(&self, rate: f64, residual: f64, target: f64, budget: usize) -> bool {
-        if residual <= target {
+    /// ratio per iteration) to bring `distance` (the residual's norm, or a time integrator
+    /// step's last correction) to `target` (its test) cost more than a refactorization and the
+    /// iterations after it, or would not fit in the `budget` of iterations left.
+    pub fn refactorize_pays(&self, rate: f64, distance: f64, target: f64, budget: usize) -> bool {
+        if distance <= target {
             return false;
         }
         if !(rate < 1.0) {
             return true;
         }
-        let remaining = (target / residual).ln() / rate.ln();
+        let remaining = (target / distance).ln() / rate.ln();
         let (refactorization, iteration) = self.prices();
         remaining > budget as f64
             || remaining * iteration > refactorization + ITERATIONS_AFTER_REFACTORIZATION * iteration

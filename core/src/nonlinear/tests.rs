@@ -328,6 +328,38 @@ fn the_quasi_newton_solver_rebuilds_a_factor_made_for_another_matrix_or_replaced
     assert_eq!(factorizations(&mut p, &mut linear, None), 0, "K again");
 }
 
+/// r = (2 + 0.4 t)(u - 1): linear, its slope 2.4 at t = 1 and 2 at t = 0.
+fn linear_with_slope_in_time(u: f64, t: f64) -> (f64, f64) {
+    let k = 2.0 + 0.4 * t;
+    (k * (u - 1.0), k)
+}
+
+/// A time integrator's step on a stale factor is judged by its own correction test, not by
+/// equilibrium's: on a factor of slope 2.4 (made at t = 1 and aged two solves) the step at t = 0,
+/// slope 2, converges at the plain factor's rate 1/6. Its correction tolerance 1e-3 is about 4
+/// iterations away at that rate, within the 10 it may take and cheaper than a refactorization
+/// (priced at 20 iterations): no refactorization. Judged by the equilibrium test, 1e-12, it
+/// would be 15 iterations away, beyond the step's limit, and refactorized.
+#[test]
+fn a_time_integrator_step_on_a_stale_factor_is_priced_by_its_own_test() {
+    use super::{NonlinearSolver, QuasiNewtonSolver};
+    let mut p = OneDof::new(linear_with_slope_in_time);
+    let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+    let mut solver = QuasiNewtonSolver::with_cost_ratio(settings(), 20.0);
+    let step = Some(IntegratorStep { correction_tolerance: 1e-3, max_iterations: 10, mass_coefficient: 1.0 });
+    let mut solve = |p: &mut OneDof, linear: &mut FaerCholesky, t: f64, integrator_step| {
+        p.integrator_step = integrator_step;
+        p.set_free_values(&[3.0]);
+        p.commit();
+        let report = solver.solve(p, linear, t, ReferenceScales::default()).unwrap();
+        assert!((p.u - 1.0).abs() < 1e-3, "{}", p.u);
+        report.factorizations
+    };
+    assert_eq!(solve(&mut p, &mut linear, 1.0, step), 1, "the first solve factorizes");
+    assert_eq!(solve(&mut p, &mut linear, 1.0, step), 0, "the same matrix");
+    assert_eq!(solve(&mut p, &mut linear, 0.0, step), 0, "the step's own test is near");
+}
+
 /// r = sin u + 1/2: stable equilibria at -pi/6 + 2 pi n, unstable ones at 7 pi/6 + 2 pi n.
 fn periodic(u: f64, _t: f64) -> (f64, f64) {
     (u.sin() + 0.5, u.cos())
