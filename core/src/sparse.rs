@@ -97,10 +97,28 @@ impl SparsityPattern {
             .expect("the pattern is a valid compressed-column structure by construction")
     }
 
-    /// y = A x for the values `values` on this pattern.
+    /// y = A x for the values `values` on this pattern: y_i = sum_k A_ik x_k, column by
+    /// column. Written out rather than through sprs's product because a sprs view checks the
+    /// whole structure (sorted, in range) each time one is made, as costly as the product
+    /// itself; this pattern is valid by construction ([`SparsityPattern::from_cells`]), and
+    /// the damped flow multiplies by its drag matrix at every residual assembly.
     pub fn multiply(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
+        assert!(
+            values.len() == self.nnz() && x.len() == self.n && y.len() == self.n,
+            "multiply: {} values, {} x and {} y entries for a pattern of {} entries and {} dofs",
+            values.len(),
+            x.len(),
+            y.len(),
+            self.nnz(),
+            self.n
+        );
         y.fill(0.0);
-        sprs::prod::mul_acc_mat_vec_csc(self.as_sprs(values), x, y);
+        for (&x_k, bounds) in x.iter().zip(self.col_ptr.windows(2)) {
+            let range = bounds[0]..bounds[1];
+            for (&row, &a) in self.row_idx[range.clone()].iter().zip(&values[range]) {
+                y[row] += a * x_k;
+            }
+        }
     }
 
     /// Writes the matrix in Matrix Market format (for inspection, or to compare with another

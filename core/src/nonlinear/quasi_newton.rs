@@ -18,9 +18,10 @@
 //!   flow's mass or a settle's shifted tangent, factorized since), or was made for another
 //!   matrix: a time integrator's step iterates on K + c M ([`IntegratorStep::mass_coefficient`]),
 //!   and a factor made for a c more than [`MASS_COEFFICIENT_CHANGE`] away, or for K alone, is
-//!   rebuilt (CVODE's rule for its Newton matrix, Hindmarsh et al. 2005): on a factor of a far
-//!   shorter step, whose drag c M dominates, the corrections come out too small by the ratio of
-//!   the c's, and a step would count as converged on its correction test while far from solved.
+//!   rebuilt (CVODE's rule for its Newton matrix, Hindmarsh et al. 2005, with a band derived
+//!   below): on a factor of a far shorter step, whose drag c M dominates, the corrections come
+//!   out too small by the ratio of the c's, and a step would count as converged on its
+//!   correction test while far from solved.
 //!
 //! So a hard increment degrades to full Newton, never to a crawl; and an increment the
 //! quasi-Newton iterations cannot converge is solved again by full Newton before it counts as
@@ -101,8 +102,18 @@ struct SavedState {
 }
 
 /// A factor's relative change of the mass coefficient c beyond which a time integrator's step
-/// rebuilds its iteration matrix K + c M (CVODE's `dgmax`, 0.3).
-pub const MASS_COEFFICIENT_CHANGE: f64 = 0.3;
+/// rebuilds its iteration matrix K + c M. On the factor of K + c_f M, the iteration for
+/// K + c M (K positive semidefinite, M positive definite) propagates its error by
+/// I - (K + c_f M)^{-1} (K + c M), whose eigenvalues 1 - lambda have lambda, a quotient
+/// (x.K x + c x.M x) / (x.K x + c_f x.M x), between 1 and c / c_f: each iteration shrinks the
+/// error by at least rho = |c / c_f - 1| (before the BFGS update and the line search improve
+/// on it), and the error left after a correction du is at most rho / (1 - rho) |du|. With
+/// |c / c_f - 1| <= 1/2 that is at most |du| itself, which the correction test
+/// ([`IntegratorStep::correction_tolerance`]) takes as the error: the factor serves. (CVODE's
+/// `dgmax` is 0.3, rho / (1 - rho) <= 0.43; the wider band spares about a third of the
+/// damped flow's factorizations, whose steps' error estimates move c by 10 to 40% from one
+/// step to the next: `docs/ru-rough-sphere.md`, "Factors the flow's steps share".)
+pub const MASS_COEFFICIENT_CHANGE: f64 = 0.5;
 
 /// Which factor the solver made: the linear solver's count of factorizations right after it
 /// (so a later factorization by anyone else shows), and the mass coefficient c of the matrix
