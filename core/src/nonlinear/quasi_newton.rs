@@ -105,8 +105,8 @@ struct SavedState {
 /// rebuilds its iteration matrix K + c M. On the factor of K + c_f M, the iteration for
 /// K + c M (K positive semidefinite, M positive definite) propagates its error by
 /// I - (K + c_f M)^{-1} (K + c M), whose eigenvalues 1 - lambda have lambda, a quotient
-/// (x.K x + c x.M x) / (x.K x + c_f x.M x), between 1 and c / c_f: each iteration shrinks the
-/// error by at least rho = |c / c_f - 1| (before the BFGS update and the line search improve
+/// (x.K x + c x.M x) / (x.K x + c_f x.M x), between 1 and c / c_f: each iteration multiplies
+/// the error by at most rho = |c / c_f - 1| (before the BFGS update and the line search improve
 /// on it), and the error left after a correction du is at most rho / (1 - rho) |du|. With
 /// |c / c_f - 1| <= 1/2 that is at most |du| itself, which the correction test
 /// ([`IntegratorStep::correction_tolerance`]) takes as the error: the factor serves. (CVODE's
