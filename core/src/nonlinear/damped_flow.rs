@@ -29,7 +29,10 @@
 //! reuses one factor over several steps) from an explicit predictor, only as accurately as the
 //! step needs: to a full correction below [`FlowSettings::solve_share`] (0.1) of the local error
 //! the step may make, and within [`MAX_ITERATIONS_PER_STEP`] iterations (a step that needs more
-//! was too long and is redone shorter; [`NonlinearProblem::integrator_step`]). The velocity
+//! was too long and is redone shorter; [`NonlinearProblem::integrator_step`]); a step whose
+//! iterations diverge from its predictor (no line-search trial reduces ||r||, and the full
+//! step leaves it above the predictor's) or stall (only a short trial does) is redone shorter
+//! at once ([`IncrementFailure::NoDescent`]). The velocity
 //! (u - s)/(beta h) that a step ends with is the flow's, v = -M^{-1} r(u), up to that solve's
 //! error; at the start it comes from a factor of M. Accuracy: the local error (for backward Euler (h/2) ||v_{n+1} -
 //! v_n||_inf, for BDF2 Milne's estimate from the predictor) is kept below `tolerance` times

@@ -51,6 +51,14 @@ pub enum IncrementFailure {
         residual: f64,
         earlier: f64,
     },
+    /// A time integrator's step whose iterations diverged or stalled at iteration `iterations`
+    /// (no line-search trial reduced ||r||, and the full step left it above the predictor's; or
+    /// only a short trial did): the step is too long for its nonlinearity, and the integrator
+    /// redoes it shorter at once ([`newton::integrator_step_diverged`]).
+    NoDescent {
+        iterations: usize,
+        residual: f64,
+    },
     /// An arc-length increment converged onto the path behind the committed state (the cosine
     /// of its angle with the previous increment, in the arc-length norm, is not positive).
     TurnedBack {
@@ -75,10 +83,13 @@ pub enum IncrementFailure {
 
 impl IncrementFailure {
     /// Whether the iterations of a fixed-time increment did not converge (they ran to the limit,
-    /// or the residual stopped falling), as opposed to a law or solver error, a jump or a
+    /// the residual stopped falling, or a time integrator's step diverged), as opposed to a law or solver error, a jump or a
     /// crossing's own failures.
     pub fn is_no_convergence(&self) -> bool {
-        matches!(self, IncrementFailure::Diverged { .. } | IncrementFailure::Stagnated { .. })
+        matches!(
+            self,
+            IncrementFailure::Diverged { .. } | IncrementFailure::Stagnated { .. } | IncrementFailure::NoDescent { .. }
+        )
     }
 }
 
@@ -91,6 +102,10 @@ impl std::fmt::Display for IncrementFailure {
             IncrementFailure::Stagnated { iterations, residual, earlier } => write!(
                 f,
                 "stagnated after {iterations} iterations (residual {residual:.3e}, {earlier:.3e} {STAGNATION_WINDOW} iterations before)"
+            ),
+            IncrementFailure::NoDescent { iterations, residual } => write!(
+                f,
+                "the step's iterations diverged or stalled at iteration {iterations} (residual {residual:.3e}): the step is too long"
             ),
             IncrementFailure::TurnedBack { cosine } => {
                 write!(

@@ -77,9 +77,13 @@ pub fn solve_increment(
         linear.solve_in_place(&mut du)?;
         report.solve_seconds += timer.elapsed().as_secs_f64();
         let timer = Instant::now();
-        let alpha = line_search(problem, &du, r_norm, settings, true);
+        let searched = line_search(problem, &du, r_norm, settings, true);
         report.assembly_seconds += timer.elapsed().as_secs_f64();
-        let alpha = alpha?;
+        let searched = searched?;
+        if let Some(diverged) = integrator_step_diverged(problem, iteration, searched, &du, report.residual_norms[0]) {
+            return Err(diverged);
+        }
+        let alpha = searched.alpha;
         full = alpha == 1.0;
         for d in du.iter_mut() {
             *d *= alpha;
@@ -88,22 +92,68 @@ pub fn solve_increment(
     Err(IncrementFailure::Diverged { iterations: max_iterations, residual: norm(problem.residual()) })
 }
 
+/// What a line search took: the step length alpha, and whether it reduced ||r|| (false: no
+/// trial did, and the full step was kept).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LineSearchStep {
+    pub alpha: f64,
+    pub reduced: bool,
+}
+
+/// The shortest line-search step a time integrator's step goes on with while its correction
+/// is still above the step's tolerance (two cuts at least).
+pub const INTEGRATOR_MIN_ALPHA: f64 = 0.1;
+
+/// Whether a time integrator's step is given up after iteration `iteration`'s line search
+/// `step` along `direction`, when the step started from the residual `initial` at its
+/// predictor. It is when the iterations diverge: no trial reduced ||r||, and the full step kept
+/// leaves it above `initial`; or when they stall: the direction is still longer than the
+/// step's correction tolerance and only a step below [`INTEGRATOR_MIN_ALPHA`] of it reduced
+/// ||r||. Either way the predictor lies outside the region where Newton's iteration converges,
+/// and the remedy is a shorter step, which the integrator takes at once, not more iterations
+/// (a stiff integrator's Newton iteration stops on divergence; Hairer and Wanner, Solving ODEs
+/// II, IV.8). Such steps (a surface node thrown into the repulsive wall, ||r|| from 1 to 1e8;
+/// or line-search steps of 0.02 to 0.0002 at a stalled ||r||) ran their 10 iterations with 6
+/// line-search trials each and were then tried again by full Newton: 1.3 to 1.8 s each on the
+/// `smooth-lj-w6` jump-in, against 0.05 s for an accepted step (a scratch build with 32 of
+/// them); that jump-in, with its 3, now takes 57 s instead of 63 s on the same path (2026-11-29,
+/// one thread, side by side). Near convergence a line search may fail
+/// in rounding: ||r|| is then far below `initial`, and the direction below the tolerance (a
+/// step solved to equilibrium, tolerance 0, is judged by divergence alone). An equilibrium
+/// solve goes on (it has no shorter step).
+pub(crate) fn integrator_step_diverged(
+    problem: &dyn NonlinearProblem,
+    iteration: usize,
+    step: LineSearchStep,
+    direction: &[f64],
+    initial: f64,
+) -> Option<IncrementFailure> {
+    let integrator = problem.integrator_step()?;
+    let residual = norm(problem.residual());
+    let diverged = !step.reduced && residual > initial;
+    let tolerance = integrator.correction_tolerance;
+    let stalled =
+        step.alpha < INTEGRATOR_MIN_ALPHA && tolerance > 0.0 && crate::vector::norm_inf(direction) > tolerance;
+    (diverged || stalled).then_some(IncrementFailure::NoDescent { iterations: iteration + 1, residual })
+}
+
 /// Moves the problem along `du` from the state with residual norm `r_norm` and returns the
-/// step length alpha actually taken; the problem is left assembled at u + alpha du (with the tangent when
+/// step it took; the problem is left assembled at u + alpha du (with the tangent when
 /// `tangent_after`).
 ///
 /// The full step is taken when it reduces ||r||; otherwise (with line search on) alpha is
 /// chosen by a quadratic model of ||r(u + alpha du)||^2, safeguarded to [0.1, 0.5] of the last
 /// trial, until ||r|| < (1 - 1e-4 alpha) r_norm. If no trial succeeds the full step is kept:
 /// quadratic convergence may still follow (and a material failure at the full step is
-/// reported as such).
+/// reported as such); the step says so (`reduced` false), and a time integrator's step may be
+/// given up for it ([`integrator_step_diverged`]).
 pub(crate) fn line_search(
     problem: &mut dyn NonlinearProblem,
     du: &[f64],
     r_norm: f64,
     settings: &NewtonSettings,
     tangent_after: bool,
-) -> Result<f64> {
+) -> Result<LineSearchStep> {
     let mut alpha = 1.0;
     problem.add_to_free(du, alpha);
     let first = problem.assemble(tangent_after);
@@ -138,7 +188,7 @@ pub(crate) fn line_search(
         // the full step is kept, so the correction the convergence test sees is the full du
         problem.add_to_free(du, 1.0 - alpha);
         problem.assemble(tangent_after)?;
-        return Ok(1.0);
+        return Ok(LineSearchStep { alpha: 1.0, reduced: false });
     }
-    Ok(alpha)
+    Ok(LineSearchStep { alpha, reduced: true })
 }

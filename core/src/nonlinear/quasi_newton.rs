@@ -36,7 +36,7 @@
 //! [`NonlinearProblem::integrator_step`]): the criteria are not loosened.
 
 use super::convergence::{Correction, NewtonSettings, ReferenceScales, check_iteration, iteration_limit};
-use super::newton::line_search;
+use super::newton::{integrator_step_diverged, line_search};
 use super::refactorization_costs::{Costs, ITERATIONS_AFTER_REFACTORIZATION, rate_is_trusted};
 use super::tangent_predictor::{PredictorFactor, predict_along_tangent};
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
@@ -255,7 +255,8 @@ impl NonlinearSolver for QuasiNewtonSolver {
                 // not a crawl, not a cut: the same increment by full Newton from the committed
                 // state, and full Newton for the next increments (the path has become hard);
                 // the report counts both attempts. A time integrator's step that failed was
-                // too long, which says nothing of the next: it is tried once by Newton.
+                // too long, which says nothing of the next: it is tried once by Newton (one whose
+                // iterations diverged or stalled, `NoDescent`, goes back to the integrator at once).
                 if problem.integrator_step().is_none() {
                     self.newton.quasi_newton_failed();
                 }
@@ -410,9 +411,15 @@ impl QuasiNewtonSolver {
             }
             report.solve_seconds += timer.elapsed().as_secs_f64();
             let timer = Instant::now();
-            let alpha = line_search(problem, &du, r_norm, &settings, false);
+            let searched = line_search(problem, &du, r_norm, &settings, false);
             report.assembly_seconds += timer.elapsed().as_secs_f64();
-            let alpha = alpha?;
+            let searched = searched?;
+            if let Some(diverged) =
+                integrator_step_diverged(problem, iteration, searched, &du, report.residual_norms[0])
+            {
+                return Err(diverged);
+            }
+            let alpha = searched.alpha;
             full = alpha == 1.0;
             for d in du.iter_mut() {
                 *d *= alpha;

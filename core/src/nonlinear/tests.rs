@@ -22,6 +22,8 @@ struct OneDof {
     tangent: [f64; 1],
     pattern: SparsityPattern,
     solution: [f64; 2],
+    /// Assemblies so far.
+    assemblies: usize,
 }
 
 impl OneDof {
@@ -38,6 +40,7 @@ impl OneDof {
             tangent: [0.0],
             pattern,
             solution: [0.0; 2],
+            assemblies: 0,
         }
     }
 }
@@ -57,6 +60,7 @@ impl NonlinearProblem for OneDof {
         self.t
     }
     fn assemble(&mut self, _with_tangent: bool) -> Result<()> {
+        self.assemblies += 1;
         let (r, k) = (self.residual_of)(self.u, self.t);
         self.residual = [r];
         self.tangent = [k];
@@ -362,6 +366,59 @@ fn a_time_integrator_step_on_a_stale_factor_is_priced_by_its_own_test() {
     assert_eq!(solve(&mut p, &mut linear, 1.0, step), 1, "the first solve factorizes");
     assert_eq!(solve(&mut p, &mut linear, 1.0, step), 0, "the same matrix");
     assert_eq!(solve(&mut p, &mut linear, 0.0, step), 0, "the step's own test is near");
+}
+
+/// A one-unknown problem's (r, dr/du) at (u, t).
+type ResidualOf = fn(f64, f64) -> (f64, f64);
+
+/// r = u seen through a tangent of the wrong sign, -1: Newton's direction runs uphill, every
+/// line-search trial raises ||r||, and the full step doubles it.
+fn uphill(u: f64, _t: f64) -> (f64, f64) {
+    (u, -1.0)
+}
+
+/// r = u seen through a tangent 25 times too soft: the full step overshoots to -24 u, the line
+/// search's first trial (0.1) to -1.5 u, and its second (0.01) reduces ||r|| to 0.75 u.
+fn far_too_soft(u: f64, _t: f64) -> (f64, f64) {
+    (u, 0.04)
+}
+
+/// A time integrator's step whose iterations diverge from its predictor (no line-search trial
+/// reduces ||r||, and the full step leaves it above the predictor's) or stall (only a trial
+/// below 0.1 of a correction above the step's tolerance reduces it) is given up at its first
+/// iteration, by Newton and by the quasi-Newton solver, which does not try it again by full
+/// Newton: its remedy is a shorter step. The assemblies are the predictor's, the line search's
+/// (the full step, its trials and the step kept) and no more. An equilibrium solve of the same
+/// problem goes on (it has no shorter step).
+#[test]
+fn a_time_integrator_step_that_diverges_or_stalls_is_given_up_at_once() {
+    use super::IncrementFailure;
+    let step = Some(IntegratorStep { correction_tolerance: 1e-3, max_iterations: 10, mass_coefficient: 1.0 });
+    let trials = settings().max_line_search;
+    // (problem, ||r|| after the first iteration, assemblies up to it)
+    let cases = [(uphill as ResidualOf, 2.0, 3 + trials), (far_too_soft, 0.75, 5)];
+    for (residual_of, residual_after, assemblies) in cases {
+        for quasi in [false, true] {
+            for integrator_step in [step, None] {
+                let mut p = OneDof::new(residual_of);
+                p.integrator_step = integrator_step;
+                p.set_free_values(&[1.0]);
+                p.commit();
+                let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+                let result = solver(settings(), quasi).solve(&mut p, &mut linear, 0.0, ReferenceScales::default());
+                match (integrator_step, result) {
+                    (Some(_), Err(IncrementFailure::NoDescent { iterations, residual })) => {
+                        assert_eq!(iterations, 1, "quasi-Newton {quasi}");
+                        assert!((residual - residual_after).abs() < 1e-12, "{residual} against {residual_after}");
+                        assert_eq!(p.assemblies, assemblies, "quasi-Newton {quasi}");
+                    }
+                    (None, Err(IncrementFailure::NoDescent { .. })) => panic!("an equilibrium solve gave up"),
+                    (None, _) => assert!(p.assemblies > assemblies, "quasi-Newton {quasi}: {}", p.assemblies),
+                    (Some(_), other) => panic!("quasi-Newton {quasi}: {other:?}"),
+                }
+            }
+        }
+    }
 }
 
 /// r = sin u + 1/2: stable equilibria at -pi/6 + 2 pi n, unstable ones at 7 pi/6 + 2 pi n.
