@@ -54,7 +54,7 @@ pub enum IncrementFailure {
     /// A time integrator's step whose iterations diverged or stalled at iteration `iterations`
     /// (no line-search trial reduced ||r||, and the full step left it above the predictor's; or
     /// only a short trial did): the step is too long for its nonlinearity, and the integrator
-    /// redoes it shorter at once ([`newton::integrator_step_diverged`]).
+    /// redoes it shorter at once (`newton::integrator_step_diverged`).
     NoDescent {
         iterations: usize,
         residual: f64,
