@@ -83,8 +83,8 @@ pub enum IncrementFailure {
 
 impl IncrementFailure {
     /// Whether the iterations of a fixed-time increment did not converge (they ran to the limit,
-    /// the residual stopped falling, or a time integrator's step diverged), as opposed to a law or solver error, a jump or a
-    /// crossing's own failures.
+    /// the residual stopped falling, or a time integrator's step diverged), as opposed to a law
+    /// or solver error, a jump or a crossing's own failures.
     pub fn is_no_convergence(&self) -> bool {
         matches!(
             self,
