@@ -18,7 +18,7 @@ use std::time::Duration;
 const MAGIC: &[u8] = b"stiction checkpoint\n";
 
 /// The version of the checkpoint layout; a file of another version is refused by name.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 
 /// The committed state of a model ([`crate::model::Model::saved_state`]).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]

@@ -54,10 +54,12 @@
 //! test measures against, 1e-3 ||u|| (a body creeping along a perfectly plastic mechanism near its
 //! limit load moves so little that the snap's own move is no scale): the end is then solved for
 //! directly (r(u) = 0 by the same solver) and accepted if it moved less than twice that (else the flow
-//! goes on, and tries again when the move to come has halved). A step that fails is cut fourfold,
-//! at most [`MAX_CUTS_IN_A_ROW`] times in a row; a flow that cannot go on then ends at its last
-//! accepted state if that state's static residual is within [`STALLED_REST_FACTOR`] of the
-//! residual test (the report says by how much), and fails otherwise.
+//! goes on, and tries again when the estimate of the move to come has halved, or when the snap's
+//! move so far has grown by half the distance to the end the missed solve found, whichever comes
+//! first). A step that fails is cut fourfold, at most [`MAX_CUTS_IN_A_ROW`] times in a row; a
+//! flow that cannot go on then ends at its last accepted state if that state's static residual
+//! is within [`STALLED_REST_FACTOR`] of the residual test (the report says by how much), and
+//! fails otherwise.
 //!
 //! Commits: an accepted step becomes the history the next steps start from (plastic strains,
 //! interface states) once the body has moved, since the last commit, at least the move the flow
@@ -154,6 +156,8 @@ pub struct FlowReport {
     /// (nor a law hysteretically) on the way: what an inertial snap turns into motion, waves
     /// and heat.
     pub drag_dissipation: f64,
+    /// The flow's end solved for directly, hit or missed (see the module documentation).
+    pub direct_end_tries: usize,
 }
 
 /// The trapezoid rule's -int r.du from `u_a` (residual `r_a`) to `u_b` (residual `r_b`) along
@@ -416,9 +420,10 @@ fn end_stalled_near_rest(
 
 /// Tries the flow's end directly from its accepted state `u_n`: solves r(u) = 0 at the
 /// problem's time with the run's solver, and ends the flow when that end lies within twice the
-/// `negligible` move of `u_n` (the problem then holds it as its trial state). A failed or too
-/// long solve is a miss: the problem is rolled back to the last committed step, and the flow
-/// goes on. The solve's costs go to `flow`.
+/// `negligible` move of `u_n` (the problem then holds it as its trial state: Ok). A failed or
+/// too long solve is a miss: the problem is rolled back to the last committed step, the flow
+/// goes on, and the error holds how far from `u_n` the end the solve found lay (None: the
+/// solve failed). The solve's costs go to `flow`.
 fn end_directly(
     problem: &mut dyn NonlinearProblem,
     solver: &mut dyn NonlinearSolver,
@@ -427,19 +432,22 @@ fn end_directly(
     u_n: &[f64],
     negligible: f64,
     flow: &mut FlowReport,
-) -> bool {
+) -> std::result::Result<(), Option<f64>> {
     let (t, solving) = (problem.time(), Instant::now());
+    let mut found = None;
     match solver.solve(problem, linear, t, scales) {
         Ok(report) => {
             flow.costs.add_costs(&report);
-            if distance_inf(&problem.free_values(), u_n) <= 2.0 * negligible {
-                return true;
+            let distance = distance_inf(&problem.free_values(), u_n);
+            if distance <= 2.0 * negligible {
+                return Ok(());
             }
+            found = Some(distance);
         }
         Err(_) => flow.failed_solve_seconds += solving.elapsed().as_secs_f64(),
     }
     problem.rollback();
-    false
+    Err(found)
 }
 
 /// Follows the flow at the problem's current time from its trial state (the committed one) to
@@ -519,8 +527,12 @@ pub struct FlowState {
     /// The last committed state, and the move from it after which a step is committed.
     committed: Vec<f64>,
     commit_bar: f64,
-    /// The end is tried directly when the move to come is below this too (halved after a miss).
+    /// After a missed direct end, the end is tried again once the estimate of the move to
+    /// come has fallen below `tail_bar` (half its value at the miss), or once the move so far
+    /// has reached `tail_reach` (its value at the miss plus half the move to the end the
+    /// missed solve found): whichever comes first. Both are infinite before a miss.
     tail_bar: f64,
+    tail_reach: f64,
     /// The static residual of the last accepted state, which a failure reports.
     committed_residual: f64,
     /// The static residual vector at the last accepted state (for the drag's dissipation).
@@ -528,6 +540,44 @@ pub struct FlowState {
 }
 
 impl FlowState {
+    /// Tries the flow's end directly ([`end_directly`]) from the last accepted state when the
+    /// move `to_come` is below the `negligible` move and, after a miss, below the tail bar or
+    /// with the move `so_far` past the tail reach (see [`FlowState`]'s fields); true when the
+    /// flow ended there (the problem holds the end as its trial state, and the drag's
+    /// dissipation up to it is counted).
+    fn try_end_directly(
+        &mut self,
+        problem: &mut dyn NonlinearProblem,
+        solver: &mut dyn NonlinearSolver,
+        linear: &mut dyn LinearSolver,
+        to_come: f64,
+        so_far: f64,
+        negligible: f64,
+    ) -> bool {
+        if !(to_come < negligible && (to_come < self.tail_bar || so_far >= self.tail_reach)) {
+            return false;
+        }
+        self.report.direct_end_tries += 1;
+        match end_directly(problem, solver, linear, self.scales, &self.u_n, negligible, &mut self.report) {
+            Ok(()) => {
+                let end = problem.free_values();
+                self.report.drag_dissipation +=
+                    released_along_segment(&self.u_n, &self.residual_n, &end, problem.residual());
+                true
+            }
+            // tried again once the estimate of the move to come has halved, or once the flow
+            // has gone half the way to the end the solve found: while a fast, light part of the
+            // body relaxes and a slow one has far to go, the estimate (from the velocity's
+            // decay) is the light part's alone, and a bar from it alone held off the end to the
+            // flow's last steps
+            Err(found) => {
+                self.tail_bar = 0.5 * to_come;
+                self.tail_reach = found.map_or(f64::INFINITY, |d| so_far + 0.5 * d);
+                false
+            }
+        }
+    }
+
     /// The flow's start at the problem's assembled trial state: its velocity and first step
     /// ([`start_velocity`]).
     fn start(
@@ -556,6 +606,7 @@ impl FlowState {
             // solver's correction test measures against, 1e-3 ||u||
             commit_bar: tolerance * 1e-3 * scales.displacement,
             tail_bar: f64::INFINITY,
+            tail_reach: f64::INFINITY,
             committed_residual,
             residual_n,
         })
@@ -664,13 +715,8 @@ pub fn follow_damped_flow(
         let so_far = distance_inf(&s.u_n, &s.origin);
         let negligible = (tol * so_far).max(resolution);
         s.commit_bar = negligible;
-        if to_come < negligible && to_come < s.tail_bar {
-            if end_directly(problem, solver, linear, scales, &s.u_n, negligible, &mut s.report) {
-                let end = problem.free_values();
-                s.report.drag_dissipation += released_along_segment(&s.u_n, &s.residual_n, &end, problem.residual());
-                return Ok(FlowEnd::Settled(s.report));
-            }
-            s.tail_bar = 0.5 * to_come;
+        if s.try_end_directly(problem, solver, linear, to_come, so_far, negligible) {
+            return Ok(FlowEnd::Settled(s.report));
         }
         if control(&s.report) == FlowControl::Pause {
             problem.rollback();
