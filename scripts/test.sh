@@ -9,4 +9,6 @@ source scripts/ensure-mpi.sh
 gmsh --version
 cargo test --workspace
 # the optional MPI build: `mpirun -n 2 stiction ensemble` against the serial aggregate
-cargo test --features mpi --test ensemble mpi_
+# (`--workspace`: the same packages as the first run, so that their features, and their builds,
+# are the same)
+cargo test --workspace --features stiction/mpi --test ensemble mpi_

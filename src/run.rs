@@ -138,16 +138,43 @@ pub fn run_model(case: &LoadedCase, built: &mut BuiltModel, options: &RunOptions
 
 /// Runs an already built model from its initial state, or from `checkpoint` (the output folder
 /// then holds the checkpointed run, which goes on).
+///
+/// With `solver.threads` > 0 the run gets a thread pool of that size for itself (not rayon's
+/// global one, which a process sets once: several runs in one process, as in the tests, each
+/// keep their own count); a run already on a pool's thread (an ensemble member, whose pool the
+/// ensemble sized) stays on it.
 fn run_built(
     case: &LoadedCase,
     built: &mut BuiltModel,
     options: &RunOptions,
     checkpoint: Option<Checkpoint>,
 ) -> Result<RunSummary> {
-    if case.case.solver.threads > 0 {
-        // Ignored if a global pool exists already (e.g. several runs in one process).
-        let _ = rayon::ThreadPoolBuilder::new().num_threads(case.case.solver.threads).build_global();
+    let threads = case.case.solver.threads;
+    if threads == 0 || rayon::current_thread_index().is_some() {
+        return solve_built(case, built, options, checkpoint);
     }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        // the main thread's stack (the run would have used it), not a worker's 2 MiB default
+        .stack_size(RUN_THREAD_STACK_BYTES)
+        .build()
+        .map_err(|e| StictionError::Output {
+            path: output_directory(case, options),
+            message: format!("cannot start the run's {threads} threads (solver.threads): {e}"),
+        })?;
+    pool.install(|| solve_built(case, built, options, checkpoint))
+}
+
+/// The stack of each thread of a run's own pool: 8 MiB, Linux's default for a main thread.
+const RUN_THREAD_STACK_BYTES: usize = 8 << 20;
+
+/// [`run_built`] on the current thread pool.
+fn solve_built(
+    case: &LoadedCase,
+    built: &mut BuiltModel,
+    options: &RunOptions,
+    checkpoint: Option<Checkpoint>,
+) -> Result<RunSummary> {
     let out = output_directory(case, options);
     if checkpoint.is_none() {
         crate::output_folder::prepare(&out, options.overwrite)?;

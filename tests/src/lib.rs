@@ -4,8 +4,9 @@
 
 pub mod half_space_lj;
 
+use std::collections::BTreeSet;
 use std::path::PathBuf;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use stiction::build::BuiltModel;
 use stiction::case;
 use stiction::run::{RunOptions, RunSummary, run_model};
@@ -33,23 +34,38 @@ pub fn build_case(relative: &str, sets: &[&str]) -> (case::LoadedCase, BuiltMode
     (loaded, built)
 }
 
+/// Claims the scratch folder `target/test-out/<label>` for one test and returns its path; panics
+/// if another test of this process claimed it already. The tests share one binary and run two
+/// at a time, so two tests writing one folder would corrupt each other's files at random: a
+/// label used twice fails at once, whichever test comes second.
+pub fn claim_output_dir(label: &str) -> PathBuf {
+    static CLAIMED: Mutex<BTreeSet<String>> = Mutex::new(BTreeSet::new());
+    let fresh = CLAIMED.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).insert(label.to_string());
+    assert!(fresh, "two tests write into target/test-out/{label}: give one of them another label");
+    workspace_root().join("target").join("test-out").join(label)
+}
+
 /// Loads a shipped case (path relative to the workspace root), applies `--set` overrides, runs
-/// it into `target/test-out/<label>` and returns the model in its final state.
+/// it into `target/test-out/<label>` (claimed, [`claim_output_dir`]) and returns the model in
+/// its final state.
 pub fn run_case(relative: &str, sets: &[&str], label: &str) -> (BuiltModel, RunSummary) {
     let (loaded, mut built) = build_case(relative, sets);
-    let out = workspace_root().join("target").join("test-out").join(label);
+    let out = claim_output_dir(label);
     let options = RunOptions { out: Some(out), overwrite: true, ..Default::default() };
     let summary = run_model(&loaded, &mut built, &options).unwrap_or_else(|e| panic!("{e}"));
     (built, summary)
 }
 
 /// A points file with one asperity at the pole (x, y = 0, height 2.786 nm, the Ru cases'),
-/// written under `target/test-out/<dir>/`.
+/// written under `target/test-out/<dir>/` through a temporary file and a rename, so that tests
+/// sharing it never read it half written.
 pub fn one_asperity_at_the_pole(dir: &str) -> PathBuf {
     let dir = workspace_root().join("target").join("test-out").join(dir);
     std::fs::create_dir_all(&dir).unwrap();
     let points = dir.join("one-asperity.csv");
-    std::fs::write(&points, "x,y,height\n0.0,0.0,2.786\n").unwrap();
+    let partial = dir.join(format!("one-asperity.csv.{:?}", std::thread::current().id()));
+    std::fs::write(&partial, "x,y,height\n0.0,0.0,2.786\n").unwrap();
+    std::fs::rename(&partial, &points).unwrap();
     points
 }
 

@@ -101,7 +101,7 @@ fn strong_adhesion_pull_off_matches_greenwood_at_w_3() {
 /// mesh each surface node zips into contact with a jump of its own. Loaded to 0.2 nm only and
 /// unloaded to -0.8 nm (past the jump-out at -0.59). A long run (350 s on 2 cores, 30,658 dofs,
 /// 205 arc-length increments), so it is not part of the default test run:
-/// `cargo test -p stiction-tests --test lennard_jones -- --ignored`.
+/// `cargo test -p stiction-tests --test validation lennard_jones:: -- --ignored`.
 #[test]
 #[ignore = "long run (about 6 minutes); run with --ignored"]
 fn strong_adhesion_pull_off_matches_greenwood_at_w_6() {

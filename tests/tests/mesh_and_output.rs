@@ -3,10 +3,10 @@
 
 use std::process::Command;
 use stiction_meshes::{DEFAULT_TIME_LIMIT_SECONDS, GeoOptions, mesh_geo, read_msh};
-use stiction_tests::workspace_root;
+use stiction_tests::{claim_output_dir, workspace_root};
 
 fn scratch(name: &str) -> std::path::PathBuf {
-    let d = workspace_root().join("target").join("test-out").join(name);
+    let d = claim_output_dir(name);
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d

@@ -10,10 +10,10 @@
 
 use std::path::{Path, PathBuf};
 use stiction::run::{RunOptions, RunSummary, run};
-use stiction_tests::workspace_root;
+use stiction_tests::{claim_output_dir, workspace_root};
 
 fn scratch(name: &str) -> PathBuf {
-    let d = workspace_root().join("target").join("test-out").join(name);
+    let d = claim_output_dir(name);
     let _ = std::fs::remove_dir_all(&d);
     d
 }
