@@ -158,9 +158,10 @@ fn run_built(
         // the main thread's stack (the run would have used it), not a worker's 2 MiB default
         .stack_size(RUN_THREAD_STACK_BYTES)
         .build()
-        .map_err(|e| StictionError::Output {
-            path: output_directory(case, options),
-            message: format!("cannot start the run's {threads} threads (solver.threads): {e}"),
+        .map_err(|e| StictionError::CaseKey {
+            path: case.path.clone(),
+            key: "solver.threads".into(),
+            message: format!("cannot start {threads} threads for the run: {e} (0 uses all cores)"),
         })?;
     pool.install(|| solve_built(case, built, options, checkpoint))
 }
