@@ -48,13 +48,15 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
         arc.push_str(&format!("; {} snapped to a stable state ({})", summary.snaps, summary.snap_method));
     }
     let mut lines = vec![format!(
-        "{}: {} increments ({} cut{arc}), {} Newton iterations, {} factorizations, {} s ({} s in attempts not committed); {} free dofs; output in {}",
+        "{}: {} increments ({} cut{arc}), {} Newton iterations, {} factorizations, {} s on {} thread{} ({} s in attempts not committed); {} free dofs; output in {}",
         summary.case,
         summary.increments,
         summary.cut_increments,
         summary.newton_iterations,
         summary.factorizations,
         significant(summary.wall_seconds),
+        summary.threads,
+        if summary.threads == 1 { "" } else { "s" },
         significant(summary.discarded_attempt_seconds),
         summary.n_free_dofs,
         summary.output_directory.display()

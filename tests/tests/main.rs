@@ -1,9 +1,9 @@
 //! Stiction's integration and validation tests, one module per subject, built as one test
 //! binary (`cargo test -p stiction-tests --test validation`; one module's tests:
 //! `cargo test -p stiction-tests --test validation lennard_jones::`). One binary links once
-//! instead of 28 times, and its harness runs any two of the tests at once, where 28 binaries
-//! ran one after another, each on 1.0 to 1.4 cores. Tests that write a run's files claim their
-//! own folder under `target/test-out` with [`stiction_tests::claim_output_dir`].
+//! instead of once per file, and its harness runs any two of the tests at once, where a binary
+//! per file ran one after another, each on 1.0 to 1.4 cores. Tests that write a run's files
+//! claim their own folder under `target/test-out` with [`stiction_tests::claim_output_dir`].
 
 mod arc_length;
 mod bad_input;
@@ -30,6 +30,7 @@ mod restart;
 mod rough_sphere;
 mod snap;
 mod snap_and_crawl_rules;
+mod solver_threads;
 mod tangent_and_newton;
 mod tangent_predictor;
 mod tangent_switch;

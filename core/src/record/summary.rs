@@ -46,6 +46,10 @@ pub struct RunSummary {
     pub nnz: usize,
     pub factor_nnz: usize,
     pub wall_seconds: f64,
+    /// The threads the run's assembly and factorization ran on (its rayon pool's size:
+    /// `solver.threads`, or all cores for 0); 0 in a summary written before this was recorded.
+    #[serde(default)]
+    pub threads: usize,
     pub assembly_seconds: f64,
     pub factorization_seconds: f64,
     pub solve_seconds: f64,

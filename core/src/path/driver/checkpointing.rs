@@ -85,11 +85,13 @@ pub(super) struct EarlierParts {
 
 impl Driver<'_> {
     /// Sets the summary's totals that come from counters outside it: the final time, wall
-    /// seconds, precision fallbacks and tangent switches, with the earlier parts of the run.
+    /// seconds, the threads of the current pool, precision fallbacks and tangent switches,
+    /// with the earlier parts of the run.
     pub(super) fn count_totals(&mut self) {
         let s = &mut self.summary;
         s.final_time = self.path.t;
         s.wall_seconds = self.earlier.wall_seconds + self.wall.elapsed().as_secs_f64();
+        s.threads = rayon::current_num_threads();
         s.double_precision_refactorizations = self.earlier.precision_fallbacks + self.linear.precision_fallbacks();
         s.tangent_switches = self.tangent.switches;
     }
