@@ -47,7 +47,8 @@ pub struct RunSummary {
     pub factor_nnz: usize,
     pub wall_seconds: f64,
     /// The threads the run's assembly and factorization ran on (its rayon pool's size:
-    /// `solver.threads`, or all cores for 0); 0 in a summary written before this was recorded.
+    /// `solver.threads`, or all cores for 0; a resumed run's last part's); 0 in a summary
+    /// written before this was recorded.
     #[serde(default)]
     pub threads: usize,
     pub assembly_seconds: f64,
