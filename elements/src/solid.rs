@@ -82,13 +82,22 @@ impl SolidKernel {
         dndx: &mut [[f64; 3]],
     ) -> Result<(f64, f64), f64> {
         let d = self.cell.dim();
-        // J[i][k] = d x_i / d xi_k
+        // J[i][k] = d x_i / d xi_k (the loops unrolled for the two dimensions)
         let mut j = [[0.0; 3]; 3];
-        for (a, x) in coords.iter().enumerate() {
-            for i in 0..d {
-                for k in 0..d {
-                    j[i][k] += x[i] * p.dn[a][k];
+        if d == 3 {
+            for (x, dn) in coords.iter().zip(&p.dn) {
+                for (ji, xi) in j.iter_mut().zip(x) {
+                    ji[0] += xi * dn[0];
+                    ji[1] += xi * dn[1];
+                    ji[2] += xi * dn[2];
                 }
+            }
+        } else {
+            for (x, dn) in coords.iter().zip(&p.dn) {
+                j[0][0] += x[0] * dn[0];
+                j[0][1] += x[0] * dn[1];
+                j[1][0] += x[1] * dn[0];
+                j[1][1] += x[1] * dn[1];
             }
         }
         let (det, inv) = if d == 3 {
@@ -122,12 +131,11 @@ impl SolidKernel {
             return Err(det);
         }
         // dN/dx_i = sum_k dN/dxi_k (J^-1)[k][i]
-        for (a, g) in dndx.iter_mut().enumerate() {
-            *g = [0.0; 3];
-            for i in 0..d {
-                for k in 0..d {
-                    g[i] += p.dn[a][k] * inv[k][i];
-                }
+        for (g, dn) in dndx.iter_mut().zip(&p.dn) {
+            if d == 3 {
+                *g = std::array::from_fn(|i| dn[0] * inv[0][i] + dn[1] * inv[1][i] + dn[2] * inv[2][i]);
+            } else {
+                *g = [dn[0] * inv[0][0] + dn[1] * inv[1][0], dn[0] * inv[0][1] + dn[1] * inv[1][1], 0.0];
             }
         }
         let mut dv = det * p.weight;
@@ -137,6 +145,58 @@ impl SolidKernel {
             dv *= 2.0 * std::f64::consts::PI * r;
         }
         Ok((dv, r))
+    }
+
+    /// The small strain at a point, eps = B u, from dN/dx without forming B. 3D, Voigt order
+    /// (xx, yy, zz, 2xy, 2yz, 2zx): eps_ii = sum_a dN_a/dx_i u_ai, 2 eps_ij = sum_a (dN_a/dx_j
+    /// u_ai + dN_a/dx_i u_aj). Axisymmetric (rr, zz, tt, 2rz): eps_tt = sum_a N_a u_ar / r.
+    fn strain(&self, p: &PointData, dndx: &[[f64; 3]], r: f64, u: &[f64]) -> Strain {
+        let mut e: Strain = [0.0; 6];
+        match self.kinematics {
+            Kinematics::Solid3D => {
+                for (g, ua) in dndx.iter().zip(u.chunks_exact(3)) {
+                    e[0] += g[0] * ua[0];
+                    e[1] += g[1] * ua[1];
+                    e[2] += g[2] * ua[2];
+                    e[3] += g[1] * ua[0] + g[0] * ua[1];
+                    e[4] += g[2] * ua[1] + g[1] * ua[2];
+                    e[5] += g[2] * ua[0] + g[0] * ua[2];
+                }
+            }
+            Kinematics::Axisymmetric => {
+                for ((g, ua), n) in dndx.iter().zip(u.chunks_exact(2)).zip(&p.n) {
+                    e[0] += g[0] * ua[0];
+                    e[1] += g[1] * ua[1];
+                    e[2] += n * ua[0];
+                    e[3] += g[1] * ua[0] + g[0] * ua[1];
+                }
+                e[2] /= r;
+            }
+        }
+        e
+    }
+
+    /// Adds a point's internal force, f_a += B_a^T sigma dv, to `force` without forming B: 3D,
+    /// f_ai = sum_j sigma_ij dN_a/dx_j dv; axisymmetric, f_ar = (sigma_rr dN_a/dr + sigma_rz
+    /// dN_a/dz + sigma_tt N_a / r) dv and f_az = (sigma_rz dN_a/dr + sigma_zz dN_a/dz) dv.
+    fn add_internal_force(&self, p: &PointData, dndx: &[[f64; 3]], r: f64, sigma: &Stress, dv: f64, force: &mut [f64]) {
+        let s: [f64; 6] = std::array::from_fn(|i| sigma[i] * dv);
+        match self.kinematics {
+            Kinematics::Solid3D => {
+                for (g, fa) in dndx.iter().zip(force.chunks_exact_mut(3)) {
+                    fa[0] += g[0] * s[0] + g[1] * s[3] + g[2] * s[5];
+                    fa[1] += g[1] * s[1] + g[0] * s[3] + g[2] * s[4];
+                    fa[2] += g[2] * s[2] + g[1] * s[4] + g[0] * s[5];
+                }
+            }
+            Kinematics::Axisymmetric => {
+                let hoop = s[2] / r;
+                for ((g, fa), n) in dndx.iter().zip(force.chunks_exact_mut(2)).zip(&p.n) {
+                    fa[0] += g[0] * s[0] + g[1] * s[3] + n * hoop;
+                    fa[1] += g[1] * s[1] + g[0] * s[3];
+                }
+            }
+        }
     }
 
     /// Fills the 6 x n_dofs strain-displacement matrix (row-major, Voigt rows).
@@ -226,11 +286,7 @@ impl ElementKernel for SolidKernel {
                 .spatial_derivatives(p, coords, &mut dndx[..nn])
                 .map_err(|det| ElementFailure::BadJacobian { point: q, det })?;
             volume += dv;
-            self.fill_b(p, &dndx[..nn], r, b);
-            let mut strain: Strain = [0.0; 6];
-            for (i, e) in strain.iter_mut().enumerate() {
-                *e = b[i * nd..(i + 1) * nd].iter().zip(displacement).map(|(x, u)| x * u).sum();
-            }
+            let strain = self.strain(p, &dndx[..nn], r, displacement);
             let mut sigma: Stress = [0.0; 6];
             let mut c: Tangent = [[0.0; 6]; 6];
             material
@@ -243,15 +299,9 @@ impl ElementKernel for SolidKernel {
                 )
                 .map_err(|error| ElementFailure::Material { point: q, error })?;
             stress[q] = sigma;
-            for i in 0..6 {
-                if sigma[i] != 0.0 {
-                    let s = sigma[i] * dv;
-                    for (f, x) in force.iter_mut().zip(&b[i * nd..(i + 1) * nd]) {
-                        *f += x * s;
-                    }
-                }
-            }
+            self.add_internal_force(p, &dndx[..nn], r, &sigma, dv, force);
             if let Some(k) = stiffness.as_deref_mut() {
+                self.fill_b(p, &dndx[..nn], r, b);
                 // CB = C B, then K += B^T (CB) dv
                 for i in 0..6 {
                     let row = &mut cb[i * nd..(i + 1) * nd];
