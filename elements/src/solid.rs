@@ -176,57 +176,85 @@ impl SolidKernel {
         e
     }
 
-    /// Adds a point's internal force, f_a += B_a^T sigma dv, to `force` without forming B: 3D,
-    /// f_ai = sum_j sigma_ij dN_a/dx_j dv; axisymmetric, f_ar = (sigma_rr dN_a/dr + sigma_rz
-    /// dN_a/dz + sigma_tt N_a / r) dv and f_az = (sigma_rz dN_a/dr + sigma_zz dN_a/dz) dv.
+    /// Adds a point's internal force, f_a += B_a^T sigma dv, to `force` without forming B
+    /// ([`Self::node_force`] of sigma dv at every node).
     fn add_internal_force(&self, p: &PointData, dndx: &[[f64; 3]], r: f64, sigma: &Stress, dv: f64, force: &mut [f64]) {
-        let s: [f64; 6] = std::array::from_fn(|i| sigma[i] * dv);
-        match self.kinematics {
-            Kinematics::Solid3D => {
-                for (g, fa) in dndx.iter().zip(force.chunks_exact_mut(3)) {
-                    fa[0] += g[0] * s[0] + g[1] * s[3] + g[2] * s[5];
-                    fa[1] += g[1] * s[1] + g[0] * s[3] + g[2] * s[4];
-                    fa[2] += g[2] * s[2] + g[1] * s[4] + g[0] * s[5];
-                }
+        let dpn = self.kinematics.dofs_per_node();
+        let s: Stress = std::array::from_fn(|i| sigma[i] * dv);
+        for ((g, fa), n) in dndx.iter().zip(force.chunks_exact_mut(dpn)).zip(&p.n) {
+            let f = self.node_force(g, *n, r, &s);
+            for (x, y) in fa.iter_mut().zip(f) {
+                *x += y;
             }
-            Kinematics::Axisymmetric => {
-                let hoop = s[2] / r;
-                for ((g, fa), n) in dndx.iter().zip(force.chunks_exact_mut(2)).zip(&p.n) {
-                    fa[0] += g[0] * s[0] + g[1] * s[3] + n * hoop;
-                    fa[1] += g[1] * s[1] + g[0] * s[3];
+        }
+    }
+
+    /// B_a^T s for a node with shape function value `n` and derivatives `g`: 3D, f_i = sum_j
+    /// s_ij dN/dx_j; axisymmetric, f_r = s_rr dN/dr + s_rz dN/dz + s_tt N / r and f_z = s_rz
+    /// dN/dr + s_zz dN/dz (the third entry 0).
+    fn node_force(&self, g: &[f64; 3], n: f64, r: f64, s: &Stress) -> [f64; 3] {
+        match self.kinematics {
+            Kinematics::Solid3D => [
+                g[0] * s[0] + g[1] * s[3] + g[2] * s[5],
+                g[1] * s[1] + g[0] * s[3] + g[2] * s[4],
+                g[2] * s[2] + g[1] * s[4] + g[0] * s[5],
+            ],
+            Kinematics::Axisymmetric => [g[0] * s[0] + g[1] * s[3] + n * s[2] / r, g[1] * s[1] + g[0] * s[3], 0.0],
+        }
+    }
+
+    /// The strain of a unit displacement of component `j` of a node (shape function value
+    /// `n`, derivatives `g`), as its (up to) three nonzero Voigt entries (index, value): the
+    /// node's column j of B.
+    fn unit_strain(&self, g: &[f64; 3], n: f64, r: f64, j: usize) -> [(usize, f64); 3] {
+        match (self.kinematics, j) {
+            (Kinematics::Solid3D, 0) => [(0, g[0]), (3, g[1]), (5, g[2])],
+            (Kinematics::Solid3D, 1) => [(1, g[1]), (3, g[0]), (4, g[2])],
+            (Kinematics::Solid3D, _) => [(2, g[2]), (4, g[1]), (5, g[0])],
+            (Kinematics::Axisymmetric, 0) => [(0, g[0]), (2, n / r), (3, g[1])],
+            (Kinematics::Axisymmetric, _) => [(1, g[1]), (3, g[0]), (0, 0.0)],
+        }
+    }
+
+    /// Adds a point's stiffness, K_ab += B_a^T C B_b dv, to the row-major `k` without forming
+    /// B: column j of C B_b dv is the stress of a unit displacement j of node b
+    /// ([`Self::unit_strain`]), and K_ab's column j is the force on node a of that stress
+    /// ([`Self::node_force`]). With C symmetric (entry by entry) so is the point's K: only the
+    /// blocks with a >= b are added, and [`Self::mirror_stiffness`] adds their transposes to
+    /// the blocks a < b once all points are in. A point with C not symmetric adds its blocks
+    /// a < b less the transposes of its blocks a > b, so the mirroring leaves exactly its own.
+    fn add_stiffness(&self, p: &PointData, dndx: &[[f64; 3]], r: f64, c: &Tangent, dv: f64, k: &mut [f64]) {
+        let nd = self.n_dofs();
+        let dpn = self.kinematics.dofs_per_node();
+        let symmetric = (0..6).all(|i| (0..i).all(|j| c[i][j] == c[j][i]));
+        for (b, gb) in dndx.iter().enumerate() {
+            for j in 0..dpn {
+                let unit = self.unit_strain(gb, p.n[b], r, j);
+                let s: Stress = std::array::from_fn(|m| unit.iter().map(|&(l, e)| c[m][l] * e).sum::<f64>() * dv);
+                let col = b * dpn + j;
+                let first = if symmetric { b } else { 0 };
+                for (a, ga) in dndx.iter().enumerate().skip(first) {
+                    let f = self.node_force(ga, p.n[a], r, &s);
+                    for (i, fi) in f.iter().enumerate().take(dpn) {
+                        let row = a * dpn + i;
+                        k[row * nd + col] += fi;
+                        if !symmetric && a > b {
+                            k[col * nd + row] -= fi;
+                        }
+                    }
                 }
             }
         }
     }
 
-    /// Fills the 6 x n_dofs strain-displacement matrix (row-major, Voigt rows).
-    fn fill_b(&self, p: &PointData, dndx: &[[f64; 3]], r: f64, b: &mut [f64]) {
+    /// Completes a stiffness [`Self::add_stiffness`] filled: K_ab += K_ba^T for every block
+    /// a < b.
+    fn mirror_stiffness(&self, k: &mut [f64]) {
         let nd = self.n_dofs();
-        b.fill(0.0);
-        match self.kinematics {
-            Kinematics::Solid3D => {
-                for (a, g) in dndx.iter().enumerate() {
-                    let c = 3 * a;
-                    b[c] = g[0];
-                    b[nd + c + 1] = g[1];
-                    b[2 * nd + c + 2] = g[2];
-                    b[3 * nd + c] = g[1];
-                    b[3 * nd + c + 1] = g[0];
-                    b[4 * nd + c + 1] = g[2];
-                    b[4 * nd + c + 2] = g[1];
-                    b[5 * nd + c] = g[2];
-                    b[5 * nd + c + 2] = g[0];
-                }
-            }
-            Kinematics::Axisymmetric => {
-                for (a, g) in dndx.iter().enumerate() {
-                    let c = 2 * a;
-                    b[c] = g[0]; // e_rr
-                    b[nd + c + 1] = g[1]; // e_zz
-                    b[2 * nd + c] = p.n[a] / r; // e_tt = u_r / r
-                    b[3 * nd + c] = g[1]; // g_rz
-                    b[3 * nd + c + 1] = g[0];
-                }
+        let dpn = self.kinematics.dofs_per_node();
+        for row in 0..nd {
+            for col in (row / dpn + 1) * dpn..nd {
+                k[row * nd + col] += k[col * nd + row];
             }
         }
     }
@@ -267,7 +295,6 @@ impl ElementKernel for SolidKernel {
         state_trial: &mut [f64],
         buffers: ElementBuffers<'_>,
     ) -> Result<f64, ElementFailure> {
-        let nd = self.n_dofs();
         let nn = self.cell.n_nodes();
         let ns = material.n_state();
         let ElementBuffers { force, mut stiffness, stress } = buffers;
@@ -276,10 +303,6 @@ impl ElementKernel for SolidKernel {
             k.fill(0.0);
         }
         let mut dndx = [[0.0; 3]; 10];
-        let mut b = [0.0; 6 * 30];
-        let mut cb = [0.0; 6 * 30];
-        let b = &mut b[..6 * nd];
-        let cb = &mut cb[..6 * nd];
         let mut volume = 0.0;
         for (q, p) in self.points.iter().enumerate() {
             let (dv, r) = self
@@ -301,32 +324,11 @@ impl ElementKernel for SolidKernel {
             stress[q] = sigma;
             self.add_internal_force(p, &dndx[..nn], r, &sigma, dv, force);
             if let Some(k) = stiffness.as_deref_mut() {
-                self.fill_b(p, &dndx[..nn], r, b);
-                // CB = C B, then K += B^T (CB) dv
-                for i in 0..6 {
-                    let row = &mut cb[i * nd..(i + 1) * nd];
-                    row.fill(0.0);
-                    for (m, cim) in c[i].iter().enumerate() {
-                        if *cim != 0.0 {
-                            for (x, y) in row.iter_mut().zip(&b[m * nd..(m + 1) * nd]) {
-                                *x += cim * y;
-                            }
-                        }
-                    }
-                }
-                for i in 0..6 {
-                    let brow = &b[i * nd..(i + 1) * nd];
-                    let cbrow = &cb[i * nd..(i + 1) * nd];
-                    for (a, &ba) in brow.iter().enumerate() {
-                        if ba != 0.0 {
-                            let s = ba * dv;
-                            for (kab, cbb) in k[a * nd..(a + 1) * nd].iter_mut().zip(cbrow) {
-                                *kab += s * cbb;
-                            }
-                        }
-                    }
-                }
+                self.add_stiffness(p, &dndx[..nn], r, &c, dv, k);
             }
+        }
+        if let Some(k) = stiffness {
+            self.mirror_stiffness(k);
         }
         Ok(volume)
     }
@@ -374,3 +376,6 @@ impl SolidKernel {
             .collect()
     }
 }
+
+#[cfg(test)]
+mod tests;
