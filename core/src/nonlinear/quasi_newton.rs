@@ -31,7 +31,12 @@
 //! further one (so the failed attempts cost a bounded share however often the path is hard),
 //! then quasi-Newton again (an adhesive jump-in is hard for a few increments, not for the rest
 //! of the run). A damped flow's step that fails (it was too long) is tried once by full Newton
-//! and starts no such stretch. Convergence is judged by the same test as Newton's
+//! and starts no such stretch; nor is a flow's step solved in a stretch, or counted against it
+//! (the stretch is for the hard equilibrium path: the flow's own matrix K + c M is better
+//! conditioned, and until 2026-12-01 the flow steps of a snap after a failed increment ran
+//! the stretch out at a factorization per iteration, 119 of the 647 factorizations of the
+//! w = 6 plastic 3D quarter's jump-in, `docs/ru-rough-sphere.md`, "Flow steps in a
+//! full-Newton stretch"). Convergence is judged by the same test as Newton's
 //! ([`NewtonSettings::converged`], or a time integrator step's own accuracy,
 //! [`NonlinearProblem::integrator_step`]): the criteria are not loosened.
 
@@ -75,6 +80,12 @@ impl QuasiNewtonSolver {
             increments_on_factor: 0,
             costs: Costs::default(),
         }
+    }
+
+    /// Begins a full-Newton stretch as a failed equilibrium increment would (for tests).
+    #[cfg(test)]
+    pub(crate) fn start_newton_stretch(&mut self) {
+        self.newton.quasi_newton_failed();
     }
 
     /// The same solver deciding with a fixed cost ratio of a refactorization (tangent assembly
@@ -243,7 +254,10 @@ impl NonlinearSolver for QuasiNewtonSolver {
         t: f64,
         scales: ReferenceScales,
     ) -> std::result::Result<IncrementReport, IncrementFailure> {
-        if self.newton.left > 0 {
+        // the full-Newton stretch is for the hard equilibrium path; a time integrator's step (a
+        // damped flow's, on K + c M) is neither solved in it nor counted against it
+        let integrating = problem.integrator_step().is_some();
+        if self.newton.left > 0 && !integrating {
             let result = super::newton::solve_increment(problem, linear, t, &self.settings, scales);
             self.newton_solved(result.is_ok());
             return result;
@@ -262,7 +276,11 @@ impl NonlinearSolver for QuasiNewtonSolver {
                 }
                 problem.rollback();
                 let newton = super::newton::solve_increment(problem, linear, t, &self.settings, scales);
-                self.newton_solved(newton.is_ok());
+                if integrating {
+                    self.factor = None;
+                } else {
+                    self.newton_solved(newton.is_ok());
+                }
                 if newton.is_ok() {
                     // Newton's last factor, of a tangent next to the converged state, serves on
                     self.factor = Some(OwnFactor::made(linear, problem.integrator_step()));

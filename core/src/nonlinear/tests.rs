@@ -266,6 +266,41 @@ fn solver(settings: NewtonSettings, quasi: bool) -> Box<dyn super::NonlinearSolv
     }
 }
 
+/// A full-Newton stretch (begun after the quasi-Newton iterations failed an equilibrium
+/// increment; 4 increments) solves its equilibrium increments by Newton, a factorization at
+/// every iteration; a time integrator's step between them is solved by the quasi-Newton
+/// iterations (fewer factorizations than iterations) and does not count against the stretch, so
+/// the fourth equilibrium increment, after three flow steps, is still Newton's and the fifth
+/// the quasi-Newton solver's. Each solve reaches the root.
+#[test]
+fn a_time_integrator_step_in_a_full_newton_stretch_is_solved_by_the_quasi_newton_iterations() {
+    use super::{NonlinearSolver, QuasiNewtonSolver};
+    let mut p = OneDof::new(cubic_with_root_one);
+    let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+    let mut solver = QuasiNewtonSolver::new(settings());
+    let flow_step = Some(IntegratorStep { correction_tolerance: 1e-9, max_iterations: 25, mass_coefficient: 1.0 });
+    let mut solve = |p: &mut OneDof, linear: &mut FaerCholesky, solver: &mut QuasiNewtonSolver, step| {
+        p.integrator_step = step;
+        p.set_free_values(&[3.0]);
+        p.commit();
+        let report = solver.solve(p, linear, 0.0, ReferenceScales::default()).unwrap();
+        assert!((p.u - 1.0).abs() < 1e-8, "{}", p.u);
+        (report.factorizations, report.iterations)
+    };
+    let quasi = solve(&mut p, &mut linear, &mut QuasiNewtonSolver::new(settings()), None);
+    assert!(quasi.0 < quasi.1, "quasi-Newton's iterations outnumber its factorizations: {quasi:?}");
+    solver.start_newton_stretch();
+    for increment in 0..4 {
+        let (factorizations, iterations) = solve(&mut p, &mut linear, &mut solver, None);
+        assert_eq!(factorizations, iterations, "equilibrium increment {increment} is Newton's");
+        assert!(iterations > 2);
+        let (factorizations, iterations) = solve(&mut p, &mut linear, &mut solver, flow_step);
+        assert!(factorizations < iterations, "flow step {increment}: {factorizations}, {iterations}");
+    }
+    let (factorizations, iterations) = solve(&mut p, &mut linear, &mut solver, None);
+    assert!(factorizations < iterations, "the stretch is over: {factorizations}, {iterations}");
+}
+
 /// A time integrator's step is solved to its own correction tolerance (fewer iterations than
 /// equilibrium's 1e-12 test, and within the tolerance of the root) and given up at its own
 /// iteration limit, by Newton and by the quasi-Newton solver.
