@@ -279,7 +279,7 @@ fn a_time_integrator_step_in_a_full_newton_stretch_is_solved_by_the_quasi_newton
     let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
     let mut solver = QuasiNewtonSolver::new(settings());
     let flow_step = Some(IntegratorStep { correction_tolerance: 1e-9, max_iterations: 25, mass_coefficient: 1.0 });
-    let mut solve = |p: &mut OneDof, linear: &mut FaerCholesky, solver: &mut QuasiNewtonSolver, step| {
+    let solve = |p: &mut OneDof, linear: &mut FaerCholesky, solver: &mut QuasiNewtonSolver, step| {
         p.integrator_step = step;
         p.set_free_values(&[3.0]);
         p.commit();
