@@ -34,8 +34,8 @@
 //! and starts no such stretch; nor is a flow's step solved in a stretch, or counted against it
 //! (the stretch is for the hard equilibrium path: the flow's own matrix K + c M is better
 //! conditioned, and until 2026-12-01 the flow steps of a snap after a failed increment ran
-//! the stretch out at a factorization per iteration, 119 of the 647 factorizations of the
-//! w = 6 plastic 3D quarter's jump-in, `docs/ru-rough-sphere.md`, "Flow steps in a
+//! the stretch out at a factorization per iteration, 119 of the 741 factorizations begun in
+//! the w = 6 plastic 3D quarter's jump-in, `docs/ru-rough-sphere.md`, "Flow steps in a
 //! full-Newton stretch"). Convergence is judged by the same test as Newton's
 //! ([`NewtonSettings::converged`], or a time integrator step's own accuracy,
 //! [`NonlinearProblem::integrator_step`]): the criteria are not loosened.
@@ -276,10 +276,9 @@ impl NonlinearSolver for QuasiNewtonSolver {
                 }
                 problem.rollback();
                 let newton = super::newton::solve_increment(problem, linear, t, &self.settings, scales);
-                if integrating {
-                    self.factor = None;
-                } else {
-                    self.newton_solved(newton.is_ok());
+                self.factor = None;
+                if !integrating {
+                    self.newton.newton_solved(newton.is_ok());
                 }
                 if newton.is_ok() {
                     // Newton's last factor, of a tangent next to the converged state, serves on
