@@ -68,6 +68,38 @@ pub trait ElementKernel: Send + Sync {
         buffers: ElementBuffers<'_>,
     ) -> Result<f64, ElementFailure>;
 
+    /// How many numbers of a cell's reference geometry the kernel can precompute once and
+    /// then evaluate from ([`Self::geometry`], [`Self::evaluate_on_geometry`]); 0 when it
+    /// precomputes nothing. Under small strain the geometry is fixed, so a kernel may keep
+    /// there what does not depend on the displacement (the spatial shape gradients and the
+    /// volume weight at each point).
+    fn geometry_len(&self) -> usize {
+        0
+    }
+
+    /// Writes the cell's reference geometry, [`Self::geometry_len`] numbers, to `out`; fails as
+    /// [`Self::evaluate`] does on an inverted or degenerate cell.
+    fn geometry(&self, _coords: &[[f64; 3]], _out: &mut [f64]) -> Result<(), ElementFailure> {
+        Ok(())
+    }
+
+    /// [`Self::evaluate`] from the cell's precomputed `geometry` ([`Self::geometry`]; empty when
+    /// the kernel keeps none, and then the default evaluates from `coords`), with the same
+    /// result.
+    #[allow(clippy::too_many_arguments)]
+    fn evaluate_on_geometry(
+        &self,
+        _geometry: &[f64],
+        coords: &[[f64; 3]],
+        displacement: &[f64],
+        material: &dyn Material,
+        state_committed: &[f64],
+        state_trial: &mut [f64],
+        buffers: ElementBuffers<'_>,
+    ) -> Result<f64, ElementFailure> {
+        self.evaluate(coords, displacement, material, state_committed, state_trial, buffers)
+    }
+
     /// Weight (volume share) of each integration point, for averages.
     fn point_volumes(&self, coords: &[[f64; 3]], out: &mut [f64]);
 

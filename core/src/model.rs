@@ -35,6 +35,9 @@ pub struct ElementSet {
     state_trial: Vec<f64>,
     stress: Vec<Stress>,
     slots: Vec<u32>,
+    /// Each cell's reference geometry as the kernel precomputes it
+    /// ([`ElementKernel::geometry`], `geometry_len` per cell), made at the first assembly.
+    geometry: Vec<f64>,
 }
 
 impl ElementSet {
@@ -66,6 +69,7 @@ impl ElementSet {
             state_committed: state,
             stress: vec![[0.0; 6]; n_points],
             slots: Vec::new(),
+            geometry: Vec::new(),
         }
     }
     pub fn n_cells(&self) -> usize {
@@ -102,6 +106,23 @@ impl ElementSet {
 }
 
 impl ElementSet {
+    /// Fills [`Self::geometry`] once (the reference geometry is fixed under small strain); an
+    /// inverted cell fails as its evaluation would, and nothing is kept.
+    fn precompute_geometry(&mut self, nodes: &[[f64; 3]]) -> Result<()> {
+        let len = self.kernel.geometry_len();
+        if len == 0 || self.geometry.len() == self.n_cells() * len {
+            return Ok(());
+        }
+        let mut geometry = vec![0.0; self.n_cells() * len];
+        let mut coords = vec![[0.0; 3]; self.kernel.n_nodes()];
+        for (cell, out) in geometry.chunks_exact_mut(len).enumerate() {
+            self.gather_coordinates(cell, nodes, &mut coords);
+            self.kernel.geometry(&coords, out).map_err(|f| element_error(&self.name, self.material.name(), cell, f))?;
+        }
+        self.geometry = geometry;
+        Ok(())
+    }
+
     /// Adds the set's consistent unit-density mass ([`ElementKernel::mass`]) to `values` (on
     /// the pattern, through the slot maps).
     fn add_mass(&self, nodes: &[[f64; 3]], values: &mut [f64]) {
@@ -170,6 +191,7 @@ impl ElementSet {
         force_total: &mut [f64],
         mut values_total: Option<&mut [f64]>,
     ) -> Result<()> {
+        self.precompute_geometry(nodes)?;
         let with_tangent = values_total.is_some();
         let n_dofs = displacement.len();
         let threads = rayon::current_num_threads().max(1);
@@ -179,27 +201,14 @@ impl ElementSet {
         let nq = self.kernel.n_points();
         let ns = self.material.n_state();
         let n_chunks = if n_cells >= 512 { threads } else { 1 };
-        let per_chunk = n_cells.div_ceil(n_chunks).max(1);
-        // Split the trial state and stress arrays by cell ranges (works for ns == 0 too).
-        let mut jobs = Vec::with_capacity(n_chunks);
-        let mut state_rest: &mut [f64] = &mut self.state_trial;
-        let mut stress_rest: &mut [Stress] = &mut self.stress;
-        let mut first = 0;
-        while first < n_cells {
-            let last = (first + per_chunk).min(n_cells);
-            let (s, r) = std::mem::take(&mut state_rest).split_at_mut((last - first) * nq * ns);
-            state_rest = r;
-            let (t, r2) = std::mem::take(&mut stress_rest).split_at_mut((last - first) * nq);
-            stress_rest = r2;
-            jobs.push((first, last, s, t));
-            first = last;
-        }
+        let jobs = cell_ranges(n_cells, n_chunks, nq, ns, &mut self.state_trial, &mut self.stress);
         let kernel = self.kernel.as_ref();
         let material = match (&self.stabilized, self.use_stabilized) {
             (Some(twin), true) => twin.as_ref(),
             _ => self.material.as_ref(),
         };
         let connectivity = &self.connectivity;
+        let (geometry, geometry_len) = (&self.geometry, self.kernel.geometry_len());
         let committed = &self.state_committed;
         let slots = &self.slots;
         let set_name = &self.name;
@@ -226,7 +235,8 @@ impl ElementSet {
                     stress: &mut stress[local * nq..(local + 1) * nq],
                 };
                 kernel
-                    .evaluate(
+                    .evaluate_on_geometry(
+                        &geometry[cell * geometry_len..(cell + 1) * geometry_len],
                         &coords,
                         &u,
                         material,
@@ -280,6 +290,31 @@ impl ElementSet {
         }
         Ok(())
     }
+}
+
+/// Splits `n_cells` cells into `n_chunks` ranges (first, last) with their parts of the trial
+/// states (`nq * ns` per cell; empty for ns == 0) and of the stresses (`nq` per cell).
+fn cell_ranges<'a>(
+    n_cells: usize,
+    n_chunks: usize,
+    nq: usize,
+    ns: usize,
+    mut state_rest: &'a mut [f64],
+    mut stress_rest: &'a mut [Stress],
+) -> Vec<(usize, usize, &'a mut [f64], &'a mut [Stress])> {
+    let per_chunk = n_cells.div_ceil(n_chunks).max(1);
+    let mut jobs = Vec::with_capacity(n_chunks);
+    let mut first = 0;
+    while first < n_cells {
+        let last = (first + per_chunk).min(n_cells);
+        let (s, r) = std::mem::take(&mut state_rest).split_at_mut((last - first) * nq * ns);
+        state_rest = r;
+        let (t, r2) = std::mem::take(&mut stress_rest).split_at_mut((last - first) * nq);
+        stress_rest = r2;
+        jobs.push((first, last, s, t));
+        first = last;
+    }
+    jobs
 }
 
 /// Something besides the solid elements that adds forces and stiffness: interfaces, contact.

@@ -101,7 +101,9 @@ impl SparsityPattern {
     /// column. Written out rather than through sprs's product because a sprs view checks the
     /// whole structure (sorted, in range) each time one is made, as costly as the product
     /// itself; this pattern is valid by construction ([`SparsityPattern::from_cells`]), and
-    /// the damped flow multiplies by its drag matrix at every residual assembly.
+    /// the single-precision factor's refinement multiplies by its matrix at every refined
+    /// solve. (The damped flow's drag, mostly zeros, is multiplied through
+    /// [`SparsityPattern::nonzeros`] instead.)
     pub fn multiply(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
         assert!(
             values.len() == self.nnz() && x.len() == self.n && y.len() == self.n,
@@ -121,6 +123,37 @@ impl SparsityPattern {
         }
     }
 
+    /// The matrix with `values` on this pattern, its exact zeros left out, as an owned sprs
+    /// matrix (its structure checked once, here): for a matrix multiplied many times whose
+    /// pattern holds many zeros. The consistent mass M_(ai)(bj) = delta_ij int N_a N_b dV
+    /// couples no two components, so on a 3D pattern two thirds of its entries are zeros; the
+    /// damped flow multiplies by its drag at every residual assembly
+    /// ([`sprs::prod::mul_acc_mat_vec_csc`] gives y += A x over the entries kept: the same sums
+    /// as [`SparsityPattern::multiply`] but for the zero terms).
+    pub fn nonzeros(&self, values: &[f64]) -> sprs::CsMat<f64> {
+        assert_eq!(
+            values.len(),
+            self.nnz(),
+            "nonzeros: {} values for a pattern of {} entries",
+            values.len(),
+            self.nnz()
+        );
+        let mut col_ptr = Vec::with_capacity(self.n + 1);
+        col_ptr.push(0);
+        let (mut rows, mut kept) = (Vec::new(), Vec::new());
+        for bounds in self.col_ptr.windows(2) {
+            let range = bounds[0]..bounds[1];
+            for (&row, &value) in self.row_idx[range.clone()].iter().zip(&values[range]) {
+                if value != 0.0 {
+                    rows.push(row);
+                    kept.push(value);
+                }
+            }
+            col_ptr.push(rows.len());
+        }
+        sprs::CsMat::new_csc((self.n, self.n), col_ptr, rows, kept)
+    }
+
     /// Writes the matrix in Matrix Market format (for inspection, or to compare with another
     /// code's tangent).
     pub fn write_matrix_market(&self, values: &[f64], path: &std::path::Path) -> std::io::Result<()> {
@@ -131,6 +164,22 @@ impl SparsityPattern {
 #[cfg(test)]
 mod tests {
     use super::*;
+    /// The nonzero entries' product is the full pattern's: y = A x for a 2x2 block pattern
+    /// whose off-diagonal block is zero, by hand.
+    #[test]
+    fn the_nonzeros_multiply_as_the_whole_pattern() {
+        let cells: Vec<Vec<usize>> = vec![vec![0, 1]];
+        let p = SparsityPattern::from_cells(2, 2, 1, cells.iter().map(|c| c.as_slice()), |n, _| Some(n));
+        // columns [a00 a10 | a01 a11] = [2 0 | 0 3]
+        let values = [2.0, 0.0, 0.0, 3.0];
+        let kept = p.nonzeros(&values);
+        assert_eq!(kept.nnz(), 2);
+        let x = [5.0, 7.0];
+        let mut y = [1.0, 1.0];
+        sprs::prod::mul_acc_mat_vec_csc(kept.view(), &x[..], &mut y[..]);
+        assert_eq!(y, [11.0, 22.0]);
+    }
+
     #[test]
     fn pattern_of_two_bars_with_a_constrained_end() {
         // nodes 0-1-2 in two 2-node cells, 1 dof per node, node 0 constrained.

@@ -258,6 +258,59 @@ impl SolidKernel {
             }
         }
     }
+
+    /// Numbers of one point's geometry: dN/dx (3 per node), dv and r.
+    fn point_geometry_len(&self) -> usize {
+        3 * self.cell.n_nodes() + 2
+    }
+
+    /// f = sum_q B_q^T sigma_q dv_q and, when asked, K = sum_q B_q^T C_q B_q dv_q, with each
+    /// point's dN/dx, dv and r from `geometry(q, dndx)` (computed from the coordinates, or
+    /// read from a precomputed copy: the same numbers); returns the volume sum_q dv_q.
+    fn evaluate_points(
+        &self,
+        geometry: impl Fn(usize, &mut [[f64; 3]]) -> Result<(f64, f64), ElementFailure>,
+        displacement: &[f64],
+        material: &dyn Material,
+        state_committed: &[f64],
+        state_trial: &mut [f64],
+        buffers: ElementBuffers<'_>,
+    ) -> Result<f64, ElementFailure> {
+        let nn = self.cell.n_nodes();
+        let ns = material.n_state();
+        let ElementBuffers { force, mut stiffness, stress } = buffers;
+        force.fill(0.0);
+        if let Some(k) = stiffness.as_deref_mut() {
+            k.fill(0.0);
+        }
+        let mut dndx = [[0.0; 3]; 10];
+        let mut volume = 0.0;
+        for (q, p) in self.points.iter().enumerate() {
+            let (dv, r) = geometry(q, &mut dndx)?;
+            volume += dv;
+            let strain = self.strain(p, &dndx[..nn], r, displacement);
+            let mut sigma: Stress = [0.0; 6];
+            let mut c: Tangent = [[0.0; 6]; 6];
+            material
+                .update(
+                    &strain,
+                    &state_committed[q * ns..(q + 1) * ns],
+                    &mut state_trial[q * ns..(q + 1) * ns],
+                    &mut sigma,
+                    &mut c,
+                )
+                .map_err(|error| ElementFailure::Material { point: q, error })?;
+            stress[q] = sigma;
+            self.add_internal_force(p, &dndx[..nn], r, &sigma, dv, force);
+            if let Some(k) = stiffness.as_deref_mut() {
+                self.add_stiffness(p, &dndx[..nn], r, &c, dv, k);
+            }
+        }
+        if let Some(k) = stiffness {
+            self.mirror_stiffness(k);
+        }
+        Ok(volume)
+    }
 }
 
 /// Shape values and reference derivatives at the points of `rule`.
@@ -296,41 +349,57 @@ impl ElementKernel for SolidKernel {
         buffers: ElementBuffers<'_>,
     ) -> Result<f64, ElementFailure> {
         let nn = self.cell.n_nodes();
-        let ns = material.n_state();
-        let ElementBuffers { force, mut stiffness, stress } = buffers;
-        force.fill(0.0);
-        if let Some(k) = stiffness.as_deref_mut() {
-            k.fill(0.0);
-        }
+        let geometry = |q: usize, dndx: &mut [[f64; 3]]| {
+            self.spatial_derivatives(&self.points[q], coords, &mut dndx[..nn])
+                .map_err(|det| ElementFailure::BadJacobian { point: q, det })
+        };
+        self.evaluate_points(geometry, displacement, material, state_committed, state_trial, buffers)
+    }
+
+    /// Per point, dN/dx (3 per node), dv and r ([`Self::spatial_derivatives`]).
+    fn geometry_len(&self) -> usize {
+        self.points.len() * self.point_geometry_len()
+    }
+
+    fn geometry(&self, coords: &[[f64; 3]], out: &mut [f64]) -> Result<(), ElementFailure> {
+        let nn = self.cell.n_nodes();
         let mut dndx = [[0.0; 3]; 10];
-        let mut volume = 0.0;
-        for (q, p) in self.points.iter().enumerate() {
+        for (q, (p, point)) in self.points.iter().zip(out.chunks_exact_mut(self.point_geometry_len())).enumerate() {
             let (dv, r) = self
                 .spatial_derivatives(p, coords, &mut dndx[..nn])
                 .map_err(|det| ElementFailure::BadJacobian { point: q, det })?;
-            volume += dv;
-            let strain = self.strain(p, &dndx[..nn], r, displacement);
-            let mut sigma: Stress = [0.0; 6];
-            let mut c: Tangent = [[0.0; 6]; 6];
-            material
-                .update(
-                    &strain,
-                    &state_committed[q * ns..(q + 1) * ns],
-                    &mut state_trial[q * ns..(q + 1) * ns],
-                    &mut sigma,
-                    &mut c,
-                )
-                .map_err(|error| ElementFailure::Material { point: q, error })?;
-            stress[q] = sigma;
-            self.add_internal_force(p, &dndx[..nn], r, &sigma, dv, force);
-            if let Some(k) = stiffness.as_deref_mut() {
-                self.add_stiffness(p, &dndx[..nn], r, &c, dv, k);
+            for (x, g) in point.chunks_exact_mut(3).zip(&dndx[..nn]) {
+                x.copy_from_slice(g);
             }
+            point[3 * nn] = dv;
+            point[3 * nn + 1] = r;
         }
-        if let Some(k) = stiffness {
-            self.mirror_stiffness(k);
+        Ok(())
+    }
+
+    fn evaluate_on_geometry(
+        &self,
+        geometry: &[f64],
+        coords: &[[f64; 3]],
+        displacement: &[f64],
+        material: &dyn Material,
+        state_committed: &[f64],
+        state_trial: &mut [f64],
+        buffers: ElementBuffers<'_>,
+    ) -> Result<f64, ElementFailure> {
+        if geometry.len() != self.geometry_len() {
+            return self.evaluate(coords, displacement, material, state_committed, state_trial, buffers);
         }
-        Ok(volume)
+        let nn = self.cell.n_nodes();
+        let per_point = self.point_geometry_len();
+        let stored = |q: usize, dndx: &mut [[f64; 3]]| {
+            let point = &geometry[q * per_point..(q + 1) * per_point];
+            for (g, x) in dndx[..nn].iter_mut().zip(point.chunks_exact(3)) {
+                *g = [x[0], x[1], x[2]];
+            }
+            Ok((point[3 * nn], point[3 * nn + 1]))
+        };
+        self.evaluate_points(stored, displacement, material, state_committed, state_trial, buffers)
     }
 
     fn point_volumes(&self, coords: &[[f64; 3]], out: &mut [f64]) {

@@ -392,10 +392,13 @@ impl Contribution for RigidFlat {
         let dt = time - self.time_committed;
         let viscous = self.viscosity > 0.0 && dt > 0.0 && self.slope_committed.len() == self.points.len();
         let mut dissipated = 0.0;
+        // the normal's nonzero components: the gap and the force have no others (a flat
+        // normal to an axis has one of three)
+        let components: Vec<usize> = (0..dpn).filter(|&k| n[k] != 0.0).collect();
         for (i, p) in self.points.iter().enumerate() {
             let mut un = 0.0;
             for (a, &node) in p.nodes.iter().enumerate() {
-                for k in 0..dpn {
+                for &k in &components {
                     un += p.shape[a] * displacement[node * dpn + k] * n[k];
                 }
             }
@@ -422,7 +425,7 @@ impl Contribution for RigidFlat {
                 dissipated += eta * dg * dg / dt * p.weight;
             }
             for (a, &node) in p.nodes.iter().enumerate() {
-                for k in 0..dpn {
+                for &k in &components {
                     force[node * dpn + k] -= p.shape[a] * value * n[k] * p.weight;
                 }
             }
@@ -431,12 +434,10 @@ impl Contribution for RigidFlat {
                     for (a, &na) in p.nodes.iter().enumerate() {
                         for (b, &nb) in p.nodes.iter().enumerate() {
                             let s = -p.shape[a] * p.shape[b] * slope * p.weight;
-                            for k in 0..dpn {
-                                for l in 0..dpn {
-                                    if n[k] != 0.0 && n[l] != 0.0 {
-                                        let local = (a * dpn + k, b * dpn + l);
-                                        add.add(i, local, (na * dpn + k, nb * dpn + l), s * n[k] * n[l]);
-                                    }
+                            for &k in &components {
+                                for &l in &components {
+                                    let local = (a * dpn + k, b * dpn + l);
+                                    add.add(i, local, (na * dpn + k, nb * dpn + l), s * n[k] * n[l]);
                                 }
                             }
                         }

@@ -173,6 +173,8 @@ fn released_along_segment(u_a: &[f64], r_a: &[f64], u_b: &[f64], r_b: &[f64]) ->
 struct DampedStep<'a> {
     inner: &'a mut dyn NonlinearProblem,
     mass: &'a [f64],
+    /// `mass`'s nonzero entries, for the drag M (u - start) at every residual assembly.
+    drag_matrix: &'a sprs::CsMat<f64>,
     start: &'a [f64],
     /// The state the step starts from.
     u_n: &'a [f64],
@@ -195,6 +197,7 @@ impl<'a> DampedStep<'a> {
     fn new(
         inner: &'a mut dyn NonlinearProblem,
         mass: &'a [f64],
+        drag_matrix: &'a sprs::CsMat<f64>,
         formula: &'a Formula,
         u_n: &'a [f64],
         h: f64,
@@ -203,6 +206,7 @@ impl<'a> DampedStep<'a> {
         Self {
             inner,
             mass,
+            drag_matrix,
             start: &formula.start,
             u_n,
             inverse_h: 1.0 / (formula.beta * h),
@@ -234,8 +238,9 @@ impl NonlinearProblem for DampedStep<'_> {
         let u = self.inner.free_values();
         self.moved.clear();
         self.moved.extend(u.iter().zip(self.start).map(|(u, s)| u - s));
+        self.drag.clear();
         self.drag.resize(u.len(), 0.0);
-        self.inner.pattern().multiply(self.mass, &self.moved, &mut self.drag);
+        sprs::prod::mul_acc_mat_vec_csc(self.drag_matrix.view(), &self.moved[..], &mut self.drag[..]);
         self.residual.clear();
         self.residual.extend(self.inner.residual().iter().zip(&self.drag).map(|(r, d)| r + self.inverse_h * d));
         if with_tangent {
@@ -651,11 +656,12 @@ pub fn follow_damped_flow(
     let mut cuts_in_a_row = 0;
     // the step last redone shorter for its error
     let mut redone: Option<Redone> = None;
+    let drag_matrix = problem.pattern().nonzeros(mass);
     while s.report.steps < settings.max_steps {
         let h = s.h;
         let formula = Formula::new(&s.u_n, &s.v, s.previous.as_ref(), h);
         problem.set_free_values(&formula.predicted);
-        let mut step = DampedStep::new(&mut *problem, mass, &formula, &s.u_n, h, settings);
+        let mut step = DampedStep::new(&mut *problem, mass, &drag_matrix, &formula, &s.u_n, h, settings);
         let solving = Instant::now();
         if let Err(e) = solver.solve(&mut step, linear, t, scales).map(|report| s.report.costs.add_costs(&report)) {
             s.report.failed_solve_seconds += solving.elapsed().as_secs_f64();

@@ -178,8 +178,9 @@ pub(crate) fn line_search(
                 break;
             }
         }
-        if accepted {
-            problem.assemble(tangent_after)?;
+        if accepted && tangent_after {
+            // the trial left the residual assembled at this alpha; only the tangent is missing
+            problem.assemble(true)?;
         }
     } else if let Err(e) = first {
         return Err(e);

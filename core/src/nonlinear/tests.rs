@@ -423,17 +423,21 @@ fn far_too_soft(u: f64, _t: f64) -> (f64, f64) {
 /// below 0.1 of a correction above the step's tolerance reduces it) is given up at its first
 /// iteration, by Newton and by the quasi-Newton solver, which does not try it again by full
 /// Newton: its remedy is a shorter step. The assemblies are the predictor's, the line search's
-/// (the full step, its trials and the step kept) and no more. An equilibrium solve of the same
-/// problem goes on (it has no shorter step).
+/// (the full step, its trials and the step kept) and no more: a trial that is kept is assembled
+/// again only for Newton's tangent there, while the quasi-Newton iterations, which need none,
+/// keep the trial's residual. An equilibrium solve of the same problem goes on (it has no
+/// shorter step).
 #[test]
 fn a_time_integrator_step_that_diverges_or_stalls_is_given_up_at_once() {
     use super::IncrementFailure;
     let step = Some(IntegratorStep { correction_tolerance: 1e-3, max_iterations: 10, mass_coefficient: 1.0 });
     let trials = settings().max_line_search;
-    // (problem, ||r|| after the first iteration, assemblies up to it)
-    let cases = [(uphill as ResidualOf, 2.0, 3 + trials), (far_too_soft, 0.75, 5)];
-    for (residual_of, residual_after, assemblies) in cases {
-        for quasi in [false, true] {
+    // (problem, ||r|| after the first iteration, assemblies up to it by Newton and by the
+    // quasi-Newton iterations): uphill keeps the full step after its trials (assembled again),
+    // far_too_soft its second trial
+    let cases = [(uphill as ResidualOf, 2.0, [3 + trials; 2]), (far_too_soft, 0.75, [5, 4])];
+    for (residual_of, residual_after, assemblies_by) in cases {
+        for (quasi, assemblies) in [false, true].into_iter().zip(assemblies_by) {
             for integrator_step in [step, None] {
                 let mut p = OneDof::new(residual_of);
                 p.integrator_step = integrator_step;
