@@ -58,15 +58,17 @@ fn distorted_nodes(cell: CellType) -> Vec<[f64; 3]> {
         .collect()
 }
 
+/// Every cell type the solid kernel takes, with its kinematics.
+const EVERY_CELL: [(CellType, Kinematics); 4] = [
+    (CellType::Tet4, Kinematics::Solid3D),
+    (CellType::Tet10, Kinematics::Solid3D),
+    (CellType::Tri3, Kinematics::Axisymmetric),
+    (CellType::Tri6, Kinematics::Axisymmetric),
+];
+
 #[test]
 fn stiffness_columns_are_the_forces_of_unit_displacements() {
-    let cases = [
-        (CellType::Tet4, Kinematics::Solid3D),
-        (CellType::Tet10, Kinematics::Solid3D),
-        (CellType::Tri3, Kinematics::Axisymmetric),
-        (CellType::Tri6, Kinematics::Axisymmetric),
-    ];
-    for (cell, kinematics) in cases {
+    for (cell, kinematics) in EVERY_CELL {
         let kernel = SolidKernel::new(cell, kinematics, QuadratureChoice::Standard).unwrap();
         let coords = distorted_nodes(cell);
         let (nd, nq) = (kernel.n_dofs(), kernel.n_points());
@@ -109,13 +111,7 @@ fn stiffness_columns_are_the_forces_of_unit_displacements() {
 /// as its evaluation does.
 #[test]
 fn an_element_evaluated_from_its_precomputed_geometry_is_the_one_evaluated_from_its_coordinates() {
-    let cases = [
-        (CellType::Tet4, Kinematics::Solid3D),
-        (CellType::Tet10, Kinematics::Solid3D),
-        (CellType::Tri3, Kinematics::Axisymmetric),
-        (CellType::Tri6, Kinematics::Axisymmetric),
-    ];
-    for (cell, kinematics) in cases {
+    for (cell, kinematics) in EVERY_CELL {
         let kernel = SolidKernel::new(cell, kinematics, QuadratureChoice::Standard).unwrap();
         let coords = distorted_nodes(cell);
         let (nd, nq) = (kernel.n_dofs(), kernel.n_points());
