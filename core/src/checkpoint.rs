@@ -17,9 +17,9 @@ use std::time::Duration;
 /// The first bytes of every checkpoint file.
 const MAGIC: &[u8] = b"stiction checkpoint\n";
 
-/// The version of the checkpoint layout; a file of another version is refused by name (6:
-/// the summary records its threads).
-pub const FORMAT_VERSION: u32 = 6;
+/// The version of the checkpoint layout; a file of another version is refused by name (7:
+/// the driver keeps its last stagnated attempt, for the fold rule).
+pub const FORMAT_VERSION: u32 = 7;
 
 /// The committed state of a model ([`crate::model::Model::saved_state`]).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]

@@ -2,8 +2,10 @@
 //! ([`CRAWL_COMMITS`] small commits in a row are passed by a snap one initial increment ahead,
 //! and a failure while still crawling snaps again at once) and the stuck rule
 //! ([`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row at the minimum increment are followed by one
-//! an initial increment ahead, or the run stops where that is no further), and the jump rule
-//! without continuation (an increment that converged far off the path is cut like a failed one).
+//! an initial increment ahead, or the run stops where that is no further), the jump rule
+//! without continuation (an increment that converged far off the path is cut like a failed one),
+//! and the fold rule (two stalled attempts whose residual floors place a fold short of the next
+//! attempt are followed by a snap over that attempt's increment, not by more cuts).
 //!
 //! The folds are made on purpose: a linear cantilever solved by Newton, except that the
 //! nonlinear solver refuses every increment a given rule calls impassable (from the committed
@@ -35,6 +37,9 @@ enum Twist {
     /// An increment from before [`FOLD`] to past it lands ten times as far as the path goes:
     /// Newton's iterations carried the body onto another branch.
     LandPastFold,
+    /// An increment from before the fold at this time to past it stagnates, at a residual
+    /// floor that grows with the overshoot, ||r|| = target - fold (a fold of the path).
+    StallPast(f64),
 }
 
 const FOLD: f64 = 0.45;
@@ -59,6 +64,13 @@ impl NonlinearSolver for TwistedNewton {
             && impassable(from, t)
         {
             return Err(IncrementFailure::Diverged { iterations: 1, residual: 1.0 });
+        }
+        if let Twist::StallPast(fold) = self.twist
+            && from < fold
+            && t > fold
+        {
+            let floor = t - fold;
+            return Err(IncrementFailure::Stagnated { iterations: 8, residual: floor, earlier: floor });
         }
         let report = self.newton.solve(problem, linear, t, scales)?;
         if matches!(self.twist, Twist::LandPastFold) && from < FOLD && t > FOLD {
@@ -245,5 +257,40 @@ fn an_increment_that_lands_on_another_branch_is_cut_and_the_fold_crossed_by_a_sn
     for (t, norm) in run.times.iter().zip(&run.norms) {
         assert!((norm - t * per_unit_time).abs() <= 1e-9 * per_unit_time, "|u| = {norm} at t = {t}");
     }
+    assert_eq!(run.times.last(), Some(&1.0));
+}
+
+/// A fold 1e-3 past the committed t = 0.5: the attempt over 1/8 stalls at 0.124, the one over
+/// 1/32 at 0.03025; their secant places the fold 1e-3 ahead, short of the next attempt's 1/128,
+/// so the driver snaps over 1/128 at once: two cuts there, where cutting on would take two more
+/// failed attempts (1/128 and 1/512 overshoot the fold too) and then crawl towards it.
+#[test]
+fn two_stalled_attempts_that_place_a_fold_short_of_the_next_one_are_followed_by_a_snap_over_it() {
+    let run = run_on_path(eighths(1e-9), Twist::StallPast(0.501));
+    assert_eq!(run.summary.status, "completed", "{:?}", run.summary.message);
+    assert_eq!(run.summary.snaps, 1, "{:?}", run.messages);
+    assert_eq!(run.summary.cut_increments, 2, "{:?}", run.messages);
+    assert_eq!(run.count("a fold 1.00e-3 from t = 0.500000"), 1, "{:?}", run.messages);
+    let snap = run.times.iter().position(|&t| t > 0.5).expect("the fold is passed");
+    assert_eq!(run.times[snap - 1], 0.5);
+    assert_eq!(run.times[snap], 0.5 + 0.125 / 16.0, "the snap goes over the increment load control would try next");
+    assert_eq!(run.times.last(), Some(&1.0));
+}
+
+/// A fold 0.02 past the committed t = 0.5: the secant of the attempts over 1/8 and 1/32 (floors
+/// 0.105 and 0.01125) places it 0.02 ahead, beyond the next attempt's 1/128, so load control
+/// cuts as before and that attempt converges short of the fold. The attempts remembered carry
+/// over that commit: the crawl's next stalls place the fold again, now within reach, and a snap
+/// passes it.
+#[test]
+fn a_fold_the_secant_places_beyond_the_next_attempt_leaves_load_control_cutting() {
+    let run = run_on_path(eighths(1e-9), Twist::StallPast(0.52));
+    assert_eq!(run.summary.status, "completed", "{:?}", run.summary.message);
+    let after_half = run.times.iter().position(|&t| t > 0.5).expect("the run passes t = 0.5");
+    assert_eq!(run.times[after_half], 0.5 + 0.125 / 16.0, "committed by load control: {:?}", run.times);
+    assert_eq!(run.count("a fold 2.00e-2 from t = 0.500000"), 0, "{:?}", run.messages);
+    assert!(run.times.iter().any(|&t| t > 0.52));
+    assert_eq!(run.summary.snaps, 1, "{:?}", run.messages);
+    assert_eq!(run.count("a fold 4.69e-4 from t = 0.519531"), 1, "{:?}", run.messages);
     assert_eq!(run.times.last(), Some(&1.0));
 }

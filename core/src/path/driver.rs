@@ -19,9 +19,12 @@
 //! [`crate::nonlinear::damped_flow`], whose steps are committed so that plastic flow follows
 //! the snap's path). The state is committed as a jump and load control goes on from it. A crawl
 //! (load control creeping towards folds it cannot pass, [`CRAWL_COMMITS`]) is passed by snaps one
-//! initial increment ahead. After [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row without a load
-//! step in between, the next snap goes one initial increment ahead too; where that is no further
-//! than the minimum increment, the run stops with the reason.
+//! initial increment ahead. Without continuation, a fold that two stalled attempts place
+//! closer than the next cut attempt would reach ([`fold_ahead`]) is snapped over at once,
+//! without the cuts down to it.
+//! After [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row without a load step in between, the next
+//! snap goes one initial increment ahead too; where that is no further than the minimum
+//! increment, the run stops with the reason.
 //!
 //! An unbalanced start: the initial state is not solved, only assembled; where its residual
 //! fails the solver's residual test (an adhesive surface started inside its jump-in range pulls
@@ -88,6 +91,27 @@ pub const MAX_SNAPS_WITHOUT_PROGRESS: usize = 3;
 /// those folds costs more than the settling that passes them).
 pub const CRAWL_COMMITS: usize = 6;
 pub const CRAWL_FRACTION: f64 = 1e-2;
+
+/// A fold located from two stalled attempts: past a fold at load t_f no equilibrium is near,
+/// and the lowest residual an attempt to the target T stalls at grows with its overshoot,
+/// r ~ c (T - t_f). Two load-controlled attempts that stagnate, to T_1 and a nearer T_2 with
+/// floors r_1 > r_2 (from the same committed state, or from two on the way there: a crawl's
+/// converged increments creep towards the fold between its failures), place the fold by the
+/// secant t_f = (r_1 T_2 - r_2 T_1) / (r_1 - r_2). Where it lies within the next attempt's
+/// reach of the committed state t, |t_f - t| < cut (T_2 - t), that attempt overshoots the fold
+/// too, and so would every shorter one down to it: the driver then snaps at once over that next
+/// increment instead of cutting on towards its minimum (six to nine failed solves per fold in
+/// the w = 6 plastic 3D quarter, where the contact front folds at each ring of surface nodes).
+/// A fold placed farther ahead leaves load control to cut as before, and so does one placed
+/// farther behind (a floor that fell no faster than the overshoot: not yet the linear regime).
+/// The attempt remembered is forgotten when the committed state passes its target (it was no
+/// fold), at a snap and at a step's start. Only without continuation: with it, the crossing
+/// follows the path round the fold (and locates it) once load control has failed
+/// `after_cuts` times. Returns t_f - t.
+fn fold_ahead(t: f64, earlier: (f64, f64), later: (f64, f64)) -> Option<f64> {
+    let ((target_1, r_1), (target_2, r_2)) = (earlier, later);
+    (target_2 < target_1 && r_2 < r_1).then(|| (r_1 * target_2 - r_2 * target_1) / (r_1 - r_2) - t)
+}
 
 /// How a converged increment was solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -337,6 +361,9 @@ struct PathState {
     /// Set by a crawl snap; cleared when a load-controlled (or crossing) increment converges,
     /// when the load reaches a breakpoint and at a step's start (see [`CRAWL_COMMITS`]).
     crawling: bool,
+    /// The last load-controlled attempt that stagnated, while the committed state is short of
+    /// its target: that target and the lowest residual it reached (see [`fold_ahead`]).
+    stagnated_attempt: Option<(f64, f64)>,
     /// Interface-law failures that cut increments, each distinct one once: (law, interface,
     /// message) -> (times, first point).
     law_failures: BTreeMap<(String, String, String), (usize, usize)>,
@@ -467,6 +494,7 @@ impl Driver<'_> {
             self.load.start_step(&step.incrementation);
             self.path.since_output = 0;
             self.path.crawling = false;
+            self.path.stagnated_attempt = None;
         }
         while self.path.t < step.end_time - 1e-12 * self.t_end {
             if self.plan.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::Relaxed)) || self.stop_due() {
@@ -496,6 +524,8 @@ impl Driver<'_> {
             let solvers = Solvers { linear: &mut *self.linear, nonlinear: &mut *self.nonlinear };
             let via = if self.crossing.is_some() { Via::Crossing } else { Via::LoadControl };
             let started = Instant::now();
+            // the load-controlled attempt's increment (for the fold rule, `fold_ahead`)
+            let attempted = self.load.target(&window) - self.path.t;
             let attempt = match self.crossing.as_mut() {
                 Some(arc) => arc.attempt(self.model, solvers, &window, scales),
                 None => self.load.attempt(self.model, solvers, &window, scales),
@@ -514,7 +544,7 @@ impl Driver<'_> {
                 }
                 Attempt::Failed(failure) => {
                     self.summary.discarded_attempt_seconds += attempt_seconds;
-                    self.failed(si, &failure)?
+                    self.failed(si, &failure, attempted)?
                 }
                 Attempt::OutsideWindow => {
                     self.crossing = None;
@@ -537,8 +567,9 @@ impl Driver<'_> {
         Ok(None)
     }
 
-    /// A failed attempt: roll back, then cut the active control (or start arc length).
-    fn failed(&mut self, si: usize, failure: &IncrementFailure) -> Result<Flow> {
+    /// A failed attempt (over `attempted`, when load-controlled): roll back, then cut the active
+    /// control (or start arc length, or snap).
+    fn failed(&mut self, si: usize, failure: &IncrementFailure, attempted: f64) -> Result<Flow> {
         if let IncrementFailure::Error(CoreError::LawFailure { law, interface, point, message, .. }) = failure {
             let entry =
                 self.path.law_failures.entry((law.clone(), interface.clone(), message.clone())).or_insert((0, *point));
@@ -582,8 +613,34 @@ impl Driver<'_> {
             let reason = format!("still crawling at t = {:.6} ({failure})", self.path.t);
             return self.crawl_snap(si, &reason);
         }
+        if let Some((dt, reason)) = self.fold_at_commit(si, attempted, failure) {
+            return self.snap_over(si, &reason, dt, false);
+        }
         let cut = self.load.cut(failure);
         self.after_cut(si, cut, failure)
+    }
+
+    /// Whether the failed load-controlled attempt over `attempted` and the last one that
+    /// stagnated place a fold within the next attempt's reach (see [`fold_ahead`]): then that
+    /// next increment, to snap over, and the reason.
+    fn fold_at_commit(&mut self, si: usize, attempted: f64, failure: &IncrementFailure) -> Option<(f64, String)> {
+        let IncrementFailure::Stagnated { residual, earlier, .. } = failure else { return None };
+        if self.plan.continuation.is_some() {
+            // the crossing takes the folds over (and locates them)
+            return None;
+        }
+        let later = (self.path.t + attempted, residual.min(*earlier));
+        let before = self.path.stagnated_attempt.replace(later)?;
+        let incrementation = &self.plan.steps[si].incrementation;
+        let next = attempted * incrementation.cut_factor;
+        let fold =
+            fold_ahead(self.path.t, before, later).filter(|d| d.abs() < next && next >= incrementation.minimum)?;
+        let reason = format!(
+            "a fold {fold:.2e} from t = {:.6}: two attempts stalled at residuals falling with their \
+             overshoot ({:.3e} at t = {:.6}, {:.3e} at {:.6})",
+            self.path.t, before.1, before.0, later.1, later.0
+        );
+        Some((next, reason))
     }
 
     fn after_cut(
@@ -641,7 +698,7 @@ impl Driver<'_> {
     /// displacement-controlled body moves to on its own, where Newton's iterations chose one).
     fn after_jump(&mut self, si: usize, target: f64, why: &'static str) -> Result<Flow> {
         let Some(continuation) = self.plan.continuation else {
-            return self.failed(si, &IncrementFailure::Jumped { why });
+            return self.failed(si, &IncrementFailure::Jumped { why }, target - self.path.t);
         };
         self.model.rollback();
         self.summary.cut_increments += 1;
@@ -715,6 +772,9 @@ impl Driver<'_> {
         };
         let (events, separated) = self.tracker.update(self.model, context, step.until_separated);
         self.path.cuts_since_commit = 0;
+        if via == Via::Settling || self.path.stagnated_attempt.is_some_and(|(target, _)| target <= self.path.t) {
+            self.path.stagnated_attempt = None;
+        }
         self.path.since_output += 1;
         let at_end = self.path.t >= step.end_time - 1e-12 * self.t_end;
         let frame_due = (step.output_every > 0 && self.path.since_output >= step.output_every) || at_end || separated;

@@ -127,7 +127,7 @@ impl Driver<'_> {
         if matches!(ending, Some(Ending::Failed(_))) {
             // resumed with other settings: go on as from a step's start
             driver.load.restart_at(self.plan.steps[self.path.step].incrementation.initial);
-            (driver.path.cuts_since_commit, driver.path.snaps_in_a_row) = (0, 0);
+            (driver.path.cuts_since_commit, driver.path.snaps_in_a_row, driver.path.stagnated_attempt) = (0, 0, None);
         }
         let record =
             Checkpoint { fingerprint: plan.fingerprint.clone(), model: self.model.saved_state(), driver, observers };

@@ -80,7 +80,7 @@ impl Driver<'_> {
     /// Settles at the target `dt` past the committed time (clipped to the step and the next
     /// breakpoint) and commits it, or stops with `reason` and why settling failed. Errors are
     /// those of committing (writing the outputs and checkpoints).
-    fn snap_over(&mut self, si: usize, reason: &str, dt: f64, crawl: bool) -> Result<Flow> {
+    pub(super) fn snap_over(&mut self, si: usize, reason: &str, dt: f64, crawl: bool) -> Result<Flow> {
         if self.path.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS && dt <= self.plan.steps[si].incrementation.minimum {
             self.path.crawling &= !crawl;
             return Ok(Flow::Stop(format!(
