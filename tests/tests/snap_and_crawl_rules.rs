@@ -279,9 +279,9 @@ fn two_stalled_attempts_that_place_a_fold_short_of_the_next_one_are_followed_by_
 
 /// A fold 0.02 past the committed t = 0.5: the secant of the attempts over 1/8 and 1/32 (floors
 /// 0.105 and 0.01125) places it 0.02 ahead, beyond the next attempt's 1/128, so load control
-/// cuts as before and that attempt converges short of the fold. The attempts remembered carry
-/// over that commit: the crawl's next stalls place the fold again, now within reach, and a snap
-/// passes it.
+/// cuts as before and that attempt converges short of the fold. Two commits on (t = 0.519531),
+/// the attempts to 0.537109 and 0.523926 stall and place the fold 4.69e-4 ahead, now within
+/// the next attempt's reach, and one snap passes it.
 #[test]
 fn a_fold_the_secant_places_beyond_the_next_attempt_leaves_load_control_cutting() {
     let run = run_on_path(eighths(1e-9), Twist::StallPast(0.52));
