@@ -613,7 +613,7 @@ impl Driver<'_> {
             let reason = format!("still crawling at t = {:.6} ({failure})", self.path.t);
             return self.crawl_snap(si, &reason);
         }
-        if let Some((dt, reason)) = self.fold_at_commit(si, attempted, failure) {
+        if let Some((dt, reason)) = self.fold_within_reach(si, attempted, failure) {
             return self.snap_over(si, &reason, dt, false);
         }
         let cut = self.load.cut(failure);
@@ -623,7 +623,7 @@ impl Driver<'_> {
     /// Whether the failed load-controlled attempt over `attempted` and the last one that
     /// stagnated place a fold within the next attempt's reach (see [`fold_ahead`]): then that
     /// next increment, to snap over, and the reason.
-    fn fold_at_commit(&mut self, si: usize, attempted: f64, failure: &IncrementFailure) -> Option<(f64, String)> {
+    fn fold_within_reach(&mut self, si: usize, attempted: f64, failure: &IncrementFailure) -> Option<(f64, String)> {
         let IncrementFailure::Stagnated { residual, earlier, .. } = failure else { return None };
         if self.plan.continuation.is_some() {
             // the crossing takes the folds over (and locates them)
