@@ -2,7 +2,9 @@
 //! factorization per iteration. Convergence: [`NewtonSettings::converged`] (and a time
 //! integrator step's own accuracy, [`crate::problem::IntegratorStep`]).
 
-use super::convergence::{Correction, NewtonSettings, ReferenceScales, check_iteration, iteration_limit};
+use super::convergence::{
+    Correction, NEAR_MISS_ITERATIONS, NewtonSettings, ReferenceScales, check_iteration, iteration_limit,
+};
 use super::{IncrementFailure, IncrementReport, NonlinearSolver};
 use crate::error::Result;
 use crate::linear_solver::LinearSolver;
@@ -51,7 +53,7 @@ pub fn solve_increment(
     let mut du = vec![0.0; problem.n_free()];
     let mut full = true;
     let max_iterations = iteration_limit(settings, problem);
-    for iteration in 0..=max_iterations {
+    for iteration in 0..=max_iterations + NEAR_MISS_ITERATIONS {
         let correction = Correction { step: &du, full };
         let check =
             check_iteration(settings, problem, scales, iteration, correction, &start_u, &mut report.residual_norms);
@@ -63,8 +65,8 @@ pub fn solve_increment(
         if let Some(stagnated) = check.stagnated {
             return Err(stagnated);
         }
-        if iteration == max_iterations {
-            break;
+        if check.out_of_iterations(iteration, max_iterations) {
+            return Err(IncrementFailure::Diverged { iterations: iteration, residual: r_norm });
         }
         let timer = Instant::now();
         linear.factorize(problem.pattern(), problem.tangent())?;
@@ -89,7 +91,11 @@ pub fn solve_increment(
             *d *= alpha;
         }
     }
-    Err(IncrementFailure::Diverged { iterations: max_iterations, residual: norm(problem.residual()) })
+    // (not reached: the last iteration allowed is out of iterations, whatever its rate)
+    Err(IncrementFailure::Diverged {
+        iterations: max_iterations + NEAR_MISS_ITERATIONS,
+        residual: norm(problem.residual()),
+    })
 }
 
 /// What a line search took: the step length alpha, and whether it reduced ||r|| (false: no

@@ -40,7 +40,9 @@
 //! ([`NewtonSettings::converged`], or a time integrator step's own accuracy,
 //! [`NonlinearProblem::integrator_step`]): the criteria are not loosened.
 
-use super::convergence::{Correction, NewtonSettings, ReferenceScales, check_iteration, iteration_limit};
+use super::convergence::{
+    Correction, NEAR_MISS_ITERATIONS, NewtonSettings, ReferenceScales, check_iteration, iteration_limit,
+};
 use super::newton::{integrator_step_diverged, line_search};
 use super::refactorization_costs::{Costs, ITERATIONS_AFTER_REFACTORIZATION, rate_is_trusted};
 use super::tangent_predictor::{PredictorFactor, predict_along_tangent};
@@ -382,7 +384,7 @@ impl QuasiNewtonSolver {
         let mut pairs_in_last_step = 0;
         let mut full = true;
         let max_iterations = iteration_limit(&settings, problem);
-        for iteration in 0..=max_iterations {
+        for iteration in 0..=max_iterations + NEAR_MISS_ITERATIONS {
             let correction = Correction { step: &du, full };
             let check = check_iteration(
                 &settings,
@@ -402,8 +404,8 @@ impl QuasiNewtonSolver {
             if let Some(stagnated) = check.stagnated {
                 return Err(stagnated);
             }
-            if iteration == max_iterations {
-                break;
+            if check.out_of_iterations(iteration, max_iterations) {
+                return Err(IncrementFailure::Diverged { iterations: iteration, residual: r_norm });
             }
             if iteration > 0 {
                 let rate = r_norm / report.residual_norms[iteration - 1];
@@ -445,7 +447,11 @@ impl QuasiNewtonSolver {
             pairs.push(du.clone(), y);
             self.costs.iterated(iteration_start.elapsed().as_secs_f64());
         }
-        Err(IncrementFailure::Diverged { iterations: max_iterations, residual: norm(problem.residual()) })
+        // (not reached: the last iteration allowed is out of iterations, whatever its rate)
+        Err(IncrementFailure::Diverged {
+            iterations: max_iterations + NEAR_MISS_ITERATIONS,
+            residual: norm(problem.residual()),
+        })
     }
 }
 

@@ -710,3 +710,33 @@ fn a_stagnating_increment_is_abandoned_and_a_slow_steady_one_is_not() {
     let report = solve(stiff_tangent, patient, false).unwrap();
     assert!((38..=42).contains(&report.iterations), "{} iterations", report.iterations);
 }
+
+/// A near miss goes on (`convergence`'s module documentation): Newton through a tangent twice
+/// too stiff halves ||r|| and the correction at each iteration, so from ||r|| = 1 it passes the
+/// residual test (1e-12) at iteration 40, with no limit in the way. With the limit at 35 the
+/// rate predicts ceil(log2(1e12) - 35) = 5 iterations more, within the 5 allowed past the
+/// limit: the increment converges at iteration 40 as before. With the limit at 34 the
+/// prediction is 6: the increment fails at its limit, as it did before the rule.
+#[test]
+fn an_increment_converging_steadily_at_its_limit_goes_on_only_while_its_rate_predicts_convergence_within_reach() {
+    use super::IncrementFailure;
+    use super::convergence::NEAR_MISS_ITERATIONS;
+    let solve = |max_iterations: usize| {
+        let mut p = OneDof::new(stiff_tangent);
+        let mut linear = FaerCholesky::analyse(&p.pattern).unwrap();
+        let settings = NewtonSettings { max_iterations, ..settings() };
+        solver(settings, false).solve(&mut p, &mut linear, 0.0, ReferenceScales::default())
+    };
+    assert_eq!(NEAR_MISS_ITERATIONS, 5);
+    let patient = solve(60).unwrap();
+    assert_eq!(patient.iterations, 40, "2^-40 <= 1e-12 < 2^-39");
+    let near_miss = solve(35).unwrap();
+    assert_eq!(near_miss.iterations, 40);
+    match solve(34) {
+        Err(IncrementFailure::Diverged { iterations, residual }) => {
+            assert_eq!(iterations, 34);
+            assert!((residual / 0.5f64.powi(34) - 1.0).abs() < 1e-9, "{residual}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
