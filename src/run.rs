@@ -111,9 +111,10 @@ fn continuation(solver: &SolverSpec) -> Option<Continuation> {
 }
 
 /// The case's `solver.snap` as the driver's method; "auto" follows the damped flow where the
-/// state a snap lands on depends on its path (a material or an interface law with state).
+/// state a snap lands on depends on its path (a material or an interface law with state), and
+/// elsewhere settles by descent, with the damped flow where a descent finds no stable state.
 fn snap_method(solver: &SolverSpec, model: &Model) -> SnapMethod {
-    let flow = SnapMethod::DampedFlow(FlowSettings {
+    let settings = FlowSettings {
         tolerance: solver.snap_tolerance,
         max_steps: solver.snap_max_steps,
         damping: match solver.snap_damping {
@@ -121,12 +122,12 @@ fn snap_method(solver: &SolverSpec, model: &Model) -> SnapMethod {
             SnapDampingSpec::Stiffness => FlowDamping::Stiffness,
         },
         ..FlowSettings::default()
-    });
+    };
     match solver.snap {
-        SnapSpec::DampedFlow => flow,
+        SnapSpec::DampedFlow => SnapMethod::DampedFlow(settings),
         SnapSpec::Settle => SnapMethod::Settle,
-        SnapSpec::Auto if model.path_dependent() => flow,
-        SnapSpec::Auto => SnapMethod::Settle,
+        SnapSpec::Auto if model.path_dependent() => SnapMethod::DampedFlow(settings),
+        SnapSpec::Auto => SnapMethod::SettleOrFlow(settings),
     }
 }
 

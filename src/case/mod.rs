@@ -607,7 +607,7 @@ pub fn defaults_help() -> String {
          method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"), \
          refactorization_cost_ratio = 0 (measured times), start_predictor = \"tangent\" (or \"none\"), \
          tangent = \"switch-on-failure\" (or \"consistent\", \"stabilized\"), \
-         snap = \"auto\" (damped-flow for a path-dependent model, else settle; or \"settle\", \"damped-flow\"), snap_damping = \"mass\" (or \"stiffness\"), snap_tolerance = {}, snap_max_steps = {}; \
+         snap = \"auto\" (damped-flow for a path-dependent model, else settle with the damped flow where a descent fails; or \"settle\", \"damped-flow\"), snap_damping = \"mass\" (or \"stiffness\"), snap_tolerance = {}, snap_max_steps = {}; \
          interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
          output.directory = out/<name>, output.vtk = true, output.checkpoint_minutes = 10; ensemble.seed = 1, threads_per_member = 0 (auto), \
          concurrent_members = 0 (auto).",

@@ -17,7 +17,8 @@
 //! displacement-controlled system snaps to ([`SnapMethod`]: by descent,
 //! [`crate::nonlinear::settle`], or along the body's overdamped motion,
 //! [`crate::nonlinear::damped_flow`], whose steps are committed so that plastic flow follows
-//! the snap's path). The state is committed as a jump and load control goes on from it. A crawl
+//! the snap's path; or by descent, with the flow where the descent finds no stable state).
+//! The state is committed as a jump and load control goes on from it. A crawl
 //! (load control creeping towards folds it cannot pass, [`CRAWL_COMMITS`]) is passed by snaps one
 //! initial increment ahead. Without continuation, a fold that two stalled attempts place
 //! closer than the next cut attempt would reach ([`fold_ahead`]) is snapped over at once,
@@ -164,6 +165,11 @@ pub enum SnapMethod {
     /// By descent from the committed state ([`crate::nonlinear::settle::settle`]): cheaper, the same state for an
     /// elastic body with one stable state in reach, a one-step plastic update otherwise.
     Settle,
+    /// By descent, and along the damped flow with these settings where the descent finds no
+    /// stable state (it may stall where the body's energy is nearly flat: a surface node
+    /// hovering at the edge of an adhesive contact); the flow, which only needs each of its short
+    /// steps solved, then finds one. The default for path-independent bodies.
+    SettleOrFlow(FlowSettings),
 }
 
 /// Path following at limit points.
@@ -321,7 +327,7 @@ fn initial_summary(model: &Model, plan: &RunPlan, factor_nnz: usize) -> RunSumma
         output_directory: plan.output_directory.clone(),
         snap_method: match plan.snap {
             SnapMethod::DampedFlow(_) => "damped-flow",
-            SnapMethod::Settle => "settle",
+            SnapMethod::Settle | SnapMethod::SettleOrFlow(_) => "settle",
         }
         .into(),
         warnings: model.contributions.iter().flat_map(|c| c.warnings()).collect(),

@@ -1,6 +1,7 @@
 //! Snaps: where neither control can go on, the driver moves the model at a fixed load to the
 //! stable state the displacement-controlled system snaps to (see the driver's module
-//! documentation), by descent ([`settle`]) or along the damped flow ([`follow_damped_flow`]).
+//! documentation), by descent ([`settle`]) or along the damped flow ([`follow_damped_flow`]),
+//! or by descent and, where the descent finds no stable state, along the flow.
 //!
 //! A damped flow may take thousands of steps (a 3D sphere jumping into contact under strong
 //! adhesion: hours). It is paused between its steps when a checkpoint is due and when the run
@@ -13,7 +14,9 @@
 use super::{Driver, Flow, MAX_SNAPS_WITHOUT_PROGRESS, SnapMethod, Via};
 use crate::error::{CoreError, Result};
 use crate::nonlinear::damped_flow::follow_damped_flow;
-use crate::nonlinear::damped_flow::{FlowControl, FlowDamping, FlowEnd, FlowReport, FlowStart, FlowState};
+use crate::nonlinear::damped_flow::{
+    FlowControl, FlowDamping, FlowEnd, FlowReport, FlowSettings, FlowStart, FlowState,
+};
 use crate::nonlinear::settle::{Settled, settle};
 use crate::nonlinear::{IncrementFailure, IncrementReport};
 use crate::path::StepWindow;
@@ -128,8 +131,10 @@ impl Driver<'_> {
         self.settle_snap()
     }
 
-    /// Solves the snap in progress (retried once on the other tangent if it fails) and commits
-    /// the state it reaches, or stops with the snap's reason and why settling failed.
+    /// Solves the snap in progress (retried once on the other tangent if it fails, and along the
+    /// damped flow where a descent found no stable state and the plan allows it,
+    /// [`SnapMethod::SettleOrFlow`]) and commits the state it reaches, or stops with the snap's
+    /// reason and why settling failed.
     fn settle_snap(&mut self) -> Result<Flow> {
         let Some(snap) = &self.snap_in_progress else { return Ok(Flow::Continue) };
         let (si, target, retried) = (snap.step, snap.target, snap.retried);
@@ -148,7 +153,24 @@ impl Driver<'_> {
             if let Some(snap) = self.snap_in_progress.as_mut() {
                 (snap.retried, snap.flow) = (true, None);
             }
+            // the rollback took the model back to its last commit's time (a flow that committed
+            // steps: the target already)
+            self.model.set_time(target);
             solved = self.solve_snap(&name, target)?;
+        }
+        if let (Snapped::Failed { failure, damped: false }, SnapMethod::SettleOrFlow(settings)) =
+            (&solved, self.plan.snap)
+        {
+            let text = format!(
+                "{name}: snapping at t = {target:.6}: the descent found no stable state ({failure}); following the damped flow instead"
+            );
+            self.observers.iter_mut().for_each(|o| o.message(&text));
+            // the descent commits nothing: the rollback took the model back to its last
+            // commit's time
+            self.model.rollback();
+            self.model.set_time(target);
+            self.summary.snap_method = "settle, the damped flow where a descent failed".into();
+            solved = self.solve_snap_by(&name, target, Some(settings))?;
         }
         if matches!(solved, Snapped::Interrupted) {
             return Ok(Flow::Interrupted);
@@ -202,8 +224,17 @@ impl Driver<'_> {
     /// successful flow did not converge, is counted as discarded. Errors are those of writing
     /// the checkpoints a long flow pauses for.
     fn solve_snap(&mut self, step_name: &str, target: f64) -> Result<Snapped> {
+        self.solve_snap_by(step_name, target, None)
+    }
+
+    /// [`Self::solve_snap`] along the damped flow with `flow` when given (a descent that
+    /// failed), by the plan's method otherwise.
+    fn solve_snap_by(&mut self, step_name: &str, target: f64, flow: Option<FlowSettings>) -> Result<Snapped> {
         let started = Instant::now();
-        let (solved, failed_solve_seconds) = self.snap_by_plan(step_name, target)?;
+        let (solved, failed_solve_seconds) = match flow {
+            Some(settings) => self.snap_by_flow(step_name, target, &settings)?,
+            None => self.snap_by_plan(step_name, target)?,
+        };
         self.summary.discarded_attempt_seconds += match &solved {
             Snapped::Settled(..) => failed_solve_seconds,
             Snapped::Failed { .. } => started.elapsed().as_secs_f64(),
@@ -215,12 +246,25 @@ impl Driver<'_> {
     /// [`Self::solve_snap`] without the accounting: also the seconds of the flow's solves that
     /// did not converge.
     fn snap_by_plan(&mut self, step_name: &str, target: f64) -> Result<(Snapped, f64)> {
+        // a damped flow that paused (for a checkpoint) goes on, also one a failed descent began
+        let flow_under_way = self.snap_in_progress.as_ref().is_some_and(|snap| snap.flow.is_some());
+        match self.plan.snap {
+            SnapMethod::DampedFlow(settings) => self.snap_by_flow(step_name, target, &settings),
+            SnapMethod::SettleOrFlow(settings) if flow_under_way => self.snap_by_flow(step_name, target, &settings),
+            SnapMethod::Settle | SnapMethod::SettleOrFlow(_) => Ok((self.snap_by_descent(), 0.0)),
+        }
+    }
+
+    /// The snap by descent ([`settle`]).
+    fn snap_by_descent(&mut self) -> Snapped {
         let scales = self.scales();
-        let SnapMethod::DampedFlow(settings) = self.plan.snap else {
-            let settings = self.nonlinear.settings().clone();
-            let settled = settle(self.model, &mut *self.linear, &settings, scales);
-            return Ok((settled_by_descent(settled), 0.0));
-        };
+        let settings = self.nonlinear.settings().clone();
+        settled_by_descent(settle(self.model, &mut *self.linear, &settings, scales))
+    }
+
+    /// The snap along the damped flow with `settings` (by descent for a problem without a mass):
+    /// how it ended, and the seconds of the flow's solves that did not converge.
+    fn snap_by_flow(&mut self, step_name: &str, target: f64, settings: &FlowSettings) -> Result<(Snapped, f64)> {
         if self.mass.is_none() {
             self.mass = match settings.damping {
                 FlowDamping::Mass => NonlinearProblem::mass(&*self.model),
@@ -231,12 +275,8 @@ impl Driver<'_> {
             };
         }
         // a problem without a mass settles by descent
-        let Some(mass) = self.mass.take() else {
-            let settings = self.nonlinear.settings().clone();
-            let settled = settle(self.model, &mut *self.linear, &settings, scales);
-            return Ok((settled_by_descent(settled), 0.0));
-        };
-        let flowed = self.follow_flow(step_name, target, &mass, &settings);
+        let Some(mass) = self.mass.take() else { return Ok((self.snap_by_descent(), 0.0)) };
+        let flowed = self.follow_flow(step_name, target, &mass, settings);
         self.mass = Some(mass);
         let f = match flowed? {
             Ok(Some(f)) => f,
@@ -266,7 +306,7 @@ impl Driver<'_> {
         step_name: &str,
         target: f64,
         mass: &[f64],
-        settings: &crate::nonlinear::damped_flow::FlowSettings,
+        settings: &FlowSettings,
     ) -> Result<std::result::Result<Option<FlowReport>, IncrementFailure>> {
         let mut start = match self.snap_in_progress.as_mut().and_then(|s| s.flow.take()) {
             Some(state) => FlowStart::Resumed(Box::new(state)),
