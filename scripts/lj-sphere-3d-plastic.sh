@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The elastic-perfectly plastic Lennard-Jones sphere in 3D (a long run, not a test): the quarter
 # of cases/validation/lj-sphere-3d.toml with von Mises plasticity (Y = 3.42 GPa) and the cycle and
-# solver settings of its axisymmetric twin cases/ru-sphere/smooth-lj-w{W}.toml (loaded to 2 nm,
-# unloaded to -3 nm, folds crossed by snaps, refactorization cost ratio 20), on one of two meshes:
+# solver settings of its axisymmetric twin cases/ru-sphere/smooth-lj-w{W}.toml (w = 3 and 6: loaded
+# to 2 nm, unloaded to -3 nm, folds crossed by snaps, refactorization cost ratio 20; w = 1: back
+# to -1 nm, folds crossed by arc length), on one of two meshes:
 #   4nm: h_contact = 4 nm, layer = 8 nm, r_fine = 30 nm (11,872 free dofs; 21 min for the w = 3
 #        cycle and 28 min for w = 6 on one thread, 2026-12-02)
 #   2nm: the shipped h_contact = 2 nm with r_fine = 65 nm (79,716 free dofs; many hours: run it
