@@ -199,14 +199,14 @@ pub fn plot_curves(dir: &Path, prefix: &str, title: &str, curves: &[Curve]) -> R
 }
 
 /// Writes `cycles.{png,svg}` in `dir`: the change of each cycle's maximum force, pull-off
-/// force, maximum real area and contact resistance at the maximum force from the first cycle's,
+/// force (cycles that separated), maximum real area and contact resistance at the maximum force from the first cycle's,
 /// in percent, on one axis of at least +-1%, so a drift over the cycles (or its absence) shows at
 /// a glance; the values themselves are in cycles.csv.
 pub fn plot_cycles(dir: &Path, title: &str, cycles: &[stiction_core::record::CycleSummary]) -> Result<(), String> {
     type Quantity = fn(&stiction_core::record::CycleSummary) -> Option<f64>;
     let quantities: [(&str, Quantity); 4] = [
         ("max force", |c| Some(c.max_force)),
-        ("pull-off force", |c| Some(c.pull_off_force)),
+        ("pull-off force", |c| c.pull_off_force),
         ("max real area", |c| Some(c.max_contact_area)),
         ("resistance at max force", |c| c.contact_resistance_at_max_force),
     ];

@@ -61,7 +61,7 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
         summary.n_free_dofs,
         summary.output_directory.display()
     )];
-    let (length, force_unit) = (summary.length_unit.as_str(), summary.force_unit.as_str());
+    let (length, force_unit) = (summary.units.length.as_str(), summary.units.force.as_str());
     let area = if length.is_empty() { String::new() } else { format!(" {length}^2") };
     let at =
         |a: f64| format!("{}{}", significant(a), if length.is_empty() { String::new() } else { format!(" {length}") });
@@ -73,21 +73,42 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
     lines.push(format!("  interfaces {units}"));
     for i in &summary.interfaces {
         if i.kind == "cohesive" {
+            // zero-thickness elements: no approach; separated or still carrying its force
+            let state = if i.separated {
+                "separated".to_string()
+            } else {
+                format!("not separated: force {} at the end", force(i.final_force, force_unit))
+            };
             lines.push(format!(
-                "  {}: most tensile force {}, most compressive {}; max contact area {}{area}",
+                "  {}: most compressive force {}; most tensile force {}; {state}; max contact area {}{area}",
                 i.name,
-                force(i.pull_off_force, force_unit),
                 force(i.max_force, force_unit),
+                force(i.most_tensile_force, force_unit),
                 significant(i.max_contact_area)
             ));
         } else {
+            // "pull-off" only where the interface separated; otherwise where it held at the end
+            let tensile = if i.separated {
+                format!(
+                    "pull-off {} at {}",
+                    force(i.most_tensile_force, force_unit),
+                    at(i.approach_at_most_tensile_force)
+                )
+            } else {
+                format!(
+                    "not separated: {} points in contact, force {} at approach {} at the end; most tensile force {} at {}",
+                    i.final_n_contact,
+                    force(i.final_force, force_unit),
+                    at(i.final_approach),
+                    force(i.most_tensile_force, force_unit),
+                    at(i.approach_at_most_tensile_force)
+                )
+            };
             lines.push(format!(
-                "  {}: max force {} at approach {}; pull-off {} at {}; max real area {}{area}; {} in contact at max",
+                "  {}: max force {} at approach {}; {tensile}; max real area {}{area}; {} in contact at max",
                 i.name,
                 force(i.max_force, force_unit),
                 at(i.approach_at_max_force),
-                force(i.pull_off_force, force_unit),
-                at(i.approach_at_pull_off),
                 significant(i.max_contact_area),
                 i.n_contact_at_max_force
             ));
@@ -145,7 +166,8 @@ pub fn ensemble_lines(a: &crate::ensemble::aggregate::EnsembleAggregate) -> Vec<
     let unit = &a.force_unit;
     for s in &a.statistics {
         // forces with the case's force unit rescaled (e.g. nN -> uN), anything else as it is
-        let is_force = matches!(s.quantity.rsplit('.').next(), Some("max_force" | "pull_off_force"));
+        let is_force =
+            matches!(s.quantity.rsplit('.').next(), Some("max_force" | "pull_off_force" | "most_tensile_force"));
         let show = |v: f64| if is_force { force(v, unit) } else { significant(v) };
         let ci = s.ci95_half_width.map_or(String::new(), |h| format!(" +- {} (95%)", show(h)));
         let std = s.std.map_or(String::new(), |d| format!(", std {}", show(d)));

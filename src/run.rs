@@ -183,7 +183,7 @@ fn solve_built(
     }
     for (name, points) in &built.layouts {
         let path = out.join(format!("{name}_points.csv"));
-        crate::build::write_points_csv(&path, points).map_err(|source| CoreError::Write { path, source })?;
+        crate::build::write_points_csv(&path, points)?;
     }
     let mut observers = observers(case, built, &out, options.progress);
     let plan = RunPlan {

@@ -133,7 +133,11 @@ fn sigkill_leaves_whole_files_and_a_summary_that_says_the_run_did_not_end() {
 /// the same run done in one go, byte for byte (the solver's decisions are fixed-cost ones).
 #[test]
 fn a_killed_run_resumes_from_its_last_checkpoint_and_ends_as_one_that_ran_through() {
+    // unloaded to 0.65 nm, before the pull-offs (the restart through a whole cycle with its
+    // snaps is tests/tests/restart.rs)
     let settings = [
+        "--set",
+        "steps.1.end_time=1.3",
         "--set",
         "output.checkpoint_minutes=0",
         "--set",

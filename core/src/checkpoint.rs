@@ -19,7 +19,7 @@ const MAGIC: &[u8] = b"stiction checkpoint\n";
 
 /// The version of the checkpoint layout; a file of another version is refused by name (7:
 /// the driver keeps its last stagnated attempt, for the fold rule).
-pub const FORMAT_VERSION: u32 = 7;
+pub const FORMAT_VERSION: u32 = 8;
 
 /// The committed state of a model ([`crate::model::Model::saved_state`]).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]

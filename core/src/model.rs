@@ -847,11 +847,17 @@ impl Model {
         self.sets.iter().any(|s| s.material.n_state() > 0) || self.contributions.iter().any(|c| c.path_dependent())
     }
 
+    /// The part of [`Model::dissipation`] that the contributions model below the mesh scale
+    /// (the footprint sliders under asperities), without the elements' plastic dissipation.
+    pub fn subscale_dissipation(&self) -> f64 {
+        self.contributions.iter().map(|c| c.plastic_dissipation()).sum()
+    }
+
     /// Total plastic (or other material) dissipation at the committed state:
     /// sum over points of D(state) * point volume, plus what contributions dissipate
     /// plastically below the mesh scale (footprint corrections).
     pub fn dissipation(&self) -> f64 {
-        let mut total: f64 = self.contributions.iter().map(|c| c.plastic_dissipation()).sum();
+        let mut total = self.subscale_dissipation();
         let mut vols = Vec::new();
         for set in &self.sets {
             let nq = set.kernel.n_points();

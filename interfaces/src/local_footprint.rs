@@ -33,7 +33,8 @@ pub struct LocalFootprint {
     /// Length per force (e.g. nm/nN): the footprint's compliance the mesh does not resolve.
     pub compliance: f64,
     /// Force magnitude at which the continuum under the footprint flows (compression and
-    /// tension alike, von Mises being symmetric).
+    /// tension alike, von Mises being symmetric); infinite where no limit is modelled (the
+    /// footprint elastic: the compliance alone).
     pub limit_force: f64,
 }
 

@@ -1,6 +1,7 @@
 //! The footprint correction of discrete points on a mesh coarser than their footprints
 //! (`points.footprint_correction`): each point's law in series with the footprint's own elastic
-//! compliance and limit force ([`stiction_interfaces::local_footprint`]).
+//! compliance and, where the case declares one, its limit force
+//! ([`stiction_interfaces::local_footprint`]).
 //!
 //! The compliance, when not given, is computed per point as what the mesh misses:
 //!   c_i = K / a - c_h(a) + (w_b . K_h^-1 w_a - u_b),   K = 16 (1 - nu^2) / (3 pi^2 E),
@@ -18,7 +19,7 @@
 //! c_i tends to zero as the mesh resolves the footprint.
 
 use super::amplitudes::Amplitudes;
-use crate::case::{FootprintCorrectionSpec, LoadedCase, MaterialSpec};
+use crate::case::{FootprintCorrectionSpec, LimitPressure, LoadedCase, MaterialSpec, VON_MISES_DISC};
 use crate::error::Result;
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -128,7 +129,7 @@ fn body_material<'a>(case: &'a LoadedCase, key: &str) -> Result<&'a MaterialSpec
         _ => Err(case.error(
             key,
             format!(
-                "the body has {} materials ({}): give compliance and limit_force explicitly",
+                "the body has {} materials ({}): give this value explicitly",
                 used.len(),
                 used.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(", ")
             ),
@@ -137,7 +138,8 @@ fn body_material<'a>(case: &'a LoadedCase, key: &str) -> Result<&'a MaterialSpec
 }
 
 /// `law` in series with the footprint of area `area`; the compliance, if not given, starts at
-/// 0 and is set per point by [`set_compliances`].
+/// 0 and is set per point by [`set_compliances`]. The footprint carries any force unless the
+/// case declares a limit ([`limit_force`]).
 pub fn corrected_law(
     case: &LoadedCase,
     key: &str,
@@ -145,24 +147,39 @@ pub fn corrected_law(
     area: f64,
     law: Arc<dyn InterfaceLaw>,
 ) -> Result<Arc<dyn InterfaceLaw>> {
-    let limit_force = match spec.limit_force {
-        Some(f) => f,
-        None => {
-            let material = body_material(case, &format!("{key}.limit_force"))?;
+    let limit_force = limit_force(case, key, spec, area)?.unwrap_or(f64::INFINITY);
+    let local = LocalFootprint { compliance: spec.compliance.unwrap_or(0.0), limit_force };
+    Ok(Arc::new(SeriesWithFootprint::new(law, local).map_err(|m| case.error(key, m))?))
+}
+
+/// The footprint's limit force where the case declares one: `limit_force`, or `limit_pressure`
+/// times the footprint's area, the named "von-mises-disc" pressure being 2.99 Y of the body's
+/// perfectly plastic material.
+pub fn limit_force(case: &LoadedCase, key: &str, spec: &FootprintCorrectionSpec, area: f64) -> Result<Option<f64>> {
+    let pressure = match &spec.limit_pressure {
+        None => return Ok(spec.limit_force),
+        Some(LimitPressure::Value(p)) => *p,
+        Some(LimitPressure::Named(_)) => {
+            let key = format!("{key}.limit_pressure");
+            let material = body_material(case, &key)?;
             if material.isotropic_hardening != 0.0 || material.kinematic_hardening != 0.0 {
                 return Err(case.error(
-                    format!("{key}.limit_force"),
-                    "the footprint's slider is perfectly plastic and its default limit is the perfectly plastic one; the body's material hardens: give limit_force explicitly",
+                    key,
+                    format!("\"{VON_MISES_DISC}\" is the limit of a perfectly plastic body and the body's material hardens: give the limit's value (limit_pressure = a number, or limit_force)"),
                 ));
             }
             match (material.model.as_str(), material.yield_stress) {
-                ("j2-plasticity", Some(y)) => DISC_LIMIT_PRESSURE_OVER_YIELD * y * area,
-                _ => f64::INFINITY,
+                ("j2-plasticity", Some(y)) => DISC_LIMIT_PRESSURE_OVER_YIELD * y,
+                _ => {
+                    return Err(case.error(
+                        key,
+                        format!("\"{VON_MISES_DISC}\" needs a body that yields (model = \"j2-plasticity\" with yield_stress): give the limit's value instead"),
+                    ));
+                }
             }
         }
     };
-    let local = LocalFootprint { compliance: spec.compliance.unwrap_or(0.0), limit_force };
-    Ok(Arc::new(SeriesWithFootprint::new(law, local).map_err(|m| case.error(key, m))?))
+    Ok(Some(pressure * area))
 }
 
 /// What a footprint correction computed, for the log and for checks: the range of the

@@ -235,7 +235,19 @@ fn rigid_flat(
             let n_inner_state = law.n_state();
             let law = match &points.footprint_correction {
                 None => law,
-                Some(c) => footprint_correction::corrected_law(case, &correction_key, c, points.footprint_area, law)?,
+                Some(c) => {
+                    let limit = footprint_correction::limit_force(case, &correction_key, c, points.footprint_area)?;
+                    eprintln!(
+                        "interface '{}': footprint limit force: {}",
+                        spec.name,
+                        limit.map_or("none (the footprint is elastic: compliance only)".to_string(), |f| format!(
+                            "{f:.4}{} (declared by {correction_key}.{})",
+                            case.case.units.as_ref().map_or(String::new(), |u| format!(" {}", u.force)),
+                            if c.limit_force.is_some() { "limit_force" } else { "limit_pressure" }
+                        ))
+                    );
+                    footprint_correction::corrected_law(case, &correction_key, c, points.footprint_area, law)?
+                }
             };
             let mut flat = stiction_interfaces::RigidFlat::at_points(
                 ctx.mesh,

@@ -313,20 +313,36 @@ pub struct PointsSpec {
     pub footprint_correction: Option<FootprintCorrectionSpec>,
 }
 
-/// The local correction of a footprint the mesh does not resolve: an elastic compliance and a
-/// rigid-plastic slider in series with the law.
+/// The local correction of a footprint the mesh does not resolve: an elastic compliance in
+/// series with the law, and, only where the case declares one, a rigid-plastic slider that
+/// limits the force the continuum under the footprint carries.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FootprintCorrectionSpec {
     /// Length per force. Absent: computed per point, as the half-space compliance of the
     /// footprint's disc minus what the mesh gives it (an elastic solve of the body, once).
     pub compliance: Option<f64>,
-    /// Force at which the continuum under a footprint flows. Absent: the limit pressure of a
-    /// disc on a von Mises half-space, 2.99 Y (`cases/validation/disc-limit-axisym.toml`), times
-    /// `footprint_area`, Y the yield stress of the body's material (none for a linear-elastic
-    /// body).
+    /// Force at which the continuum under a footprint flows (opt-in; absent with
+    /// `limit_pressure` absent: no limit, the footprint is elastic).
     pub limit_force: Option<f64>,
+    /// The same limit as a pressure over `footprint_area` (opt-in): a number, or
+    /// "von-mises-disc", the limit pressure of a uniform pressure on a disc over a von Mises
+    /// half-space, 2.99 Y (`cases/validation/disc-limit-axisym.toml`), Y the yield stress of
+    /// the body's perfectly plastic material.
+    pub limit_pressure: Option<LimitPressure>,
 }
+
+/// `points.footprint_correction.limit_pressure`: a value, or a named limit derived from the
+/// body's material.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub enum LimitPressure {
+    Value(f64),
+    Named(String),
+}
+
+/// The one named limit pressure.
+pub const VON_MISES_DISC: &str = "von-mises-disc";
 
 fn default_seed() -> u64 {
     1

@@ -2,7 +2,7 @@
 //! [`super::load`], so `stiction check` and `stiction run` accept and reject the same inputs.
 //! Errors name the case key.
 
-use super::LoadedCase;
+use super::{LimitPressure, LoadedCase, VON_MISES_DISC};
 use crate::error::Result;
 
 /// A finite number.
@@ -228,8 +228,30 @@ fn points(case: &LoadedCase, key: &str, p: &super::PointsSpec) -> Result<()> {
                 format!("must be a finite number >= 0, got {v}"),
             ));
         }
-        if let Some(v) = c.limit_force.filter(|v| !(*v > 0.0)) {
-            return Err(case.error(format!("{key}.footprint_correction.limit_force"), format!("must be > 0, got {v}")));
+        if let Some(v) = c.limit_force.filter(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(case.error(
+                format!("{key}.footprint_correction.limit_force"),
+                format!("must be a finite number > 0, got {v}"),
+            ));
+        }
+        let pressure_key = format!("{key}.footprint_correction.limit_pressure");
+        match &c.limit_pressure {
+            Some(_) if c.limit_force.is_some() => {
+                return Err(case.error(
+                    pressure_key,
+                    "the footprint's limit is given twice (limit_force and limit_pressure): give one of them",
+                ));
+            }
+            Some(LimitPressure::Value(v)) if !(v.is_finite() && *v > 0.0) => {
+                return Err(case.error(pressure_key, format!("must be a finite number > 0, got {v}")));
+            }
+            Some(LimitPressure::Named(name)) if name != VON_MISES_DISC => {
+                return Err(case.error(
+                    pressure_key,
+                    format!("must be a pressure (a number > 0) or \"{VON_MISES_DISC}\", got \"{name}\""),
+                ));
+            }
+            _ => {}
         }
     }
     Ok(())

@@ -15,12 +15,17 @@ use std::path::Path;
 use stiction_core::output::write_atomically;
 
 /// Per-interface quantities of summary.json that the ensemble summarises.
-pub const INTERFACE_QUANTITIES: [&str; 10] = [
+/// The pull-off's quantities are null in the summary of a member that did not separate, so
+/// their statistics are over the members that separated (n says how many).
+pub const INTERFACE_QUANTITIES: [&str; 13] = [
     "max_force",
     "approach_at_max_force",
     "n_contact_at_max_force",
     "contact_area_at_max_force",
     "max_contact_area",
+    "most_tensile_force",
+    "approach_at_most_tensile_force",
+    "contact_area_at_most_tensile_force",
     "pull_off_force",
     "approach_at_pull_off",
     "contact_area_at_pull_off",
@@ -32,7 +37,7 @@ pub const INTERFACE_QUANTITIES: [&str; 10] = [
 pub const RUN_QUANTITIES: [&str; 2] = ["plastic_dissipation", "max_equivalent_plastic_strain"];
 
 /// Quantities whose confidence interval is followed against the number of members.
-pub const CONVERGENCE_QUANTITIES: [&str; 3] = ["max_force", "pull_off_force", "max_contact_area"];
+pub const CONVERGENCE_QUANTITIES: [&str; 4] = ["max_force", "most_tensile_force", "pull_off_force", "max_contact_area"];
 
 /// The width of a quantity's confidence interval with the first n completed members.
 #[derive(Debug, Clone, Serialize)]

@@ -180,25 +180,68 @@ fn dissipation_control_without_a_damage_law_is_refused() {
 }
 
 #[test]
-fn a_footprint_correction_needs_a_footprint_and_a_perfectly_plastic_body_for_its_default_limit() {
+fn a_footprint_correction_needs_a_footprint_and_a_limit_is_declared_once_with_a_valid_value() {
     let path = workspace_root().join("cases/ru-rough-sphere/rough-w6-quick.toml");
     let (msg, code) =
         failure(&path, &["interfaces.0.points.footprint_area=0.0", "interfaces.0.points.footprint_correction={}"]);
     assert_eq!(code, 2);
     assert!(msg.contains("interfaces[0].points.footprint_correction") && msg.contains("footprint_area"), "{msg}");
+    let correction = |c: &str| format!("interfaces.0.points.footprint_correction={c}");
+    // the named limit is the perfectly plastic body's: a hardening body needs a value
     let (msg, code) = failure(
         &path,
         &[
-            "interfaces.0.points.footprint_area=12.2",
-            "interfaces.0.points.footprint_correction={ compliance = 0.0 }",
+            &correction("{ compliance = 0.0, limit_pressure = \"von-mises-disc\" }"),
             "materials.ru.isotropic_hardening=10.0",
         ],
     );
     assert_eq!(code, 2);
-    assert!(msg.contains("footprint_correction.limit_force") && msg.contains("hardens"), "{msg}");
-    let (msg, _) = failure(
+    assert!(msg.contains("footprint_correction.limit_pressure") && msg.contains("hardens"), "{msg}");
+    // ... and a body that yields
+    let (msg, code) = failure(
         &path,
-        &["interfaces.0.points.footprint_area=12.2", "interfaces.0.points.footprint_correction={ limit_force = -1.0 }"],
+        &[
+            &correction("{ compliance = 0.0, limit_pressure = \"von-mises-disc\" }"),
+            "materials.ru.model=\"linear-elastic\"",
+        ],
     );
-    assert!(msg.contains("footprint_correction.limit_force") && msg.contains("> 0"), "{msg}");
+    assert_eq!(code, 2);
+    assert!(msg.contains("footprint_correction.limit_pressure") && msg.contains("yields"), "{msg}");
+    for (given, key, expected) in [
+        ("{ limit_force = -1.0 }", "limit_force", "> 0"),
+        ("{ limit_force = inf }", "limit_force", "finite"),
+        ("{ limit_pressure = 0.0 }", "limit_pressure", "> 0"),
+        ("{ limit_pressure = nan }", "limit_pressure", "finite"),
+        ("{ limit_pressure = \"bulk\" }", "limit_pressure", "von-mises-disc"),
+        ("{ limit_force = 100.0, limit_pressure = 8.0 }", "limit_pressure", "given twice"),
+    ] {
+        let (msg, code) = failure(&path, &[&correction(given)]);
+        assert_eq!(code, 2, "{given}: {msg}");
+        assert!(msg.contains(&format!("footprint_correction.{key}")) && msg.contains(expected), "{given}: {msg}");
+    }
+}
+
+/// A points file with a duplicated row, a point closer than the case's min_spacing, or a
+/// number that is not finite is refused with the file and line (a duplicate would carry twice
+/// the force at one place).
+#[test]
+fn a_points_file_with_a_duplicate_a_too_close_or_a_non_finite_point_names_its_line() {
+    let path = workspace_root().join("cases/ru-rough-sphere/rough-w6-quick.toml");
+    let points = |name: &str, rows: &str| scratch(name, &format!("x,y,height\n0.0,0.0,2.786\n{rows}"));
+    let file = |p: &PathBuf| format!("interfaces.0.points.file=\"{}\"", p.display());
+    let duplicate = points("duplicate-point.csv", "10.0,0.0,2.786\n0.0,0.0,2.786\n");
+    let (msg, code) = failure(&path, &[&file(&duplicate), "interfaces.0.points.min_spacing=0.0"]);
+    assert_eq!(code, 2);
+    assert!(
+        msg.contains("duplicate-point.csv' line 4") && msg.contains("line 2") && msg.contains("same point"),
+        "{msg}"
+    );
+    let close = points("close-points.csv", "3.0,0.0,2.786\n");
+    let (msg, code) = failure(&path, &[&file(&close)]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("close-points.csv' line 3") && msg.contains("min_spacing = 3.5"), "{msg}");
+    let not_finite = points("nan-point.csv", "10.0,nan,2.786\n");
+    let (msg, code) = failure(&path, &[&file(&not_finite)]);
+    assert_eq!(code, 2);
+    assert!(msg.contains("nan-point.csv' line 3") && msg.contains("finite"), "{msg}");
 }

@@ -1,6 +1,7 @@
 //! The footprint correction: one asperity at the pole of the Ru hemisphere on meshes coarser
 //! than its footprint (12.2 nm^2, radius 1.97 nm), with the footprint's own compliance and
-//! limit force in series with its law (`points.footprint_correction`).
+//! (declared here, as in the bulk-limit sensitivity study) its limit force in series with its
+//! law (`points.footprint_correction`).
 //! - Compliance: the mesh's own compliance under the footprint grows as the mesh is refined;
 //!   with the correction the total is the half-space disc's, u_bar / F = 16 (1 - nu^2) /
 //!   (3 pi^2 a E) (Johnson, Contact Mechanics, 3.4), on any mesh (the hemisphere's own global
@@ -20,7 +21,7 @@ const AREA: f64 = 12.2;
 fn corrected(h: f64, r_fine: f64, growth: f64) -> Vec<String> {
     vec![
         format!(
-            "interfaces.0.points={{ file = \"{}\", footprint_area = {AREA}, footprint_correction = {{}} }}",
+            "interfaces.0.points={{ file = \"{}\", footprint_area = {AREA}, footprint_correction = {{ limit_pressure = \"von-mises-disc\" }} }}",
             one_asperity_at_the_pole("footprint-correction-input").display()
         ),
         format!("mesh.parameters.h_contact={h}"),

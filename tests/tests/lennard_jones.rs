@@ -51,7 +51,7 @@ fn compare_with_greenwood(w: f64, sets: &[&str], label: &str) -> RunSummary {
     assert!(!summary.warnings.iter().any(|m| m.contains("had not separated")), "{:?}", summary.warnings);
     let reference = greenwood(w);
     let scale = PI * w * 1000.0;
-    let fe = summary.interfaces[0].pull_off_force;
+    let fe = summary.interfaces[0].pull_off_force.expect("the sphere separated");
     let (jump_in, jump_out) = (reference.jump_in.unwrap(), reference.jump_out.unwrap());
     // the folds the run reports (summary.json `folds`), those of unloading (step 2)
     let folds: Vec<(f64, f64)> =
@@ -158,10 +158,11 @@ fn lennard_jones_pull_off_matches_greenwood_at_w_1_and_lies_in_the_jkr_dmt_trans
     let mu = (r * w * w / (e_star * e_star * z0.powi(3))).powf(1.0 / 3.0);
     let md = maugis_pull_off(1.157 * mu);
     let i = &summary.interfaces[0];
-    let fe = -i.pull_off_force / (std::f64::consts::PI * w * r);
+    let pull_off = i.pull_off_force.expect("the sphere separated");
+    let fe = -pull_off / (std::f64::consts::PI * w * r);
     println!(
         "Tabor {mu:.3}: pull-off {:.1} nN = {fe:.4} pi w R; Maugis-Dugdale {md:.4} ({:+.2}%); viscous dissipation {:.2} ({:.1}% of the cycle's work)",
-        -i.pull_off_force,
+        -pull_off,
         100.0 * (fe / md - 1.0),
         i.viscous_dissipation,
         100.0 * i.viscous_share_of_work
@@ -182,15 +183,12 @@ fn lennard_jones_pull_off_matches_greenwood_at_w_1_and_lies_in_the_jkr_dmt_trans
     let (_, viscous) = run_case("cases/validation/lj-sphere.toml", &viscous_sets, "lj-sphere-viscous");
     assert_eq!(viscous.status, "completed");
     let v = &viscous.interfaces[0];
+    let viscous_pull_off = v.pull_off_force.expect("the viscous run separated");
     println!(
         "arc length: pull-off {:.2} nN, {} limit points, {} arc-length increments; viscous (zeta 1e-4): pull-off {:.2} nN, viscous dissipation {:.1} aJ",
-        -i.pull_off_force,
-        summary.limit_points,
-        summary.arc_length_increments,
-        -v.pull_off_force,
-        v.viscous_dissipation
+        -pull_off, summary.limit_points, summary.arc_length_increments, -viscous_pull_off, v.viscous_dissipation
     );
-    assert!((v.pull_off_force / i.pull_off_force - 1.0).abs() < 1e-3, "{} vs {}", v.pull_off_force, i.pull_off_force);
+    assert!((viscous_pull_off / pull_off - 1.0).abs() < 1e-3, "{viscous_pull_off} vs {pull_off}");
     assert!(v.viscous_dissipation > 0.0);
 }
 

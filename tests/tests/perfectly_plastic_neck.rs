@@ -49,7 +49,7 @@ fn assert_same_cycle(a: &RunSummary, b: &RunSummary, costs: &str) {
         assert_eq!(s.status, "completed", "{:?}", s.message);
         assert_eq!(s.final_time, 2.0);
     }
-    let (fa, fb) = (a.interfaces[0].pull_off_force, b.interfaces[0].pull_off_force);
+    let (fa, fb) = (a.interfaces[0].most_tensile_force, b.interfaces[0].most_tensile_force);
     let (da, db) = (a.plastic_dissipation, b.plastic_dissipation);
     println!(
         "most tensile force {fa:.1} vs {fb:.1} nN ({:+.2}%), plastic dissipation {da:.2} vs {db:.2} aJ ({:+.2}%); {costs}",

@@ -156,7 +156,7 @@ fn the_rough_sphere_stopped_twice_and_resumed_writes_the_same_history_as_one_run
         false,
         "rough-quick",
     );
-    assert!(summary.interfaces[0].pull_off_force < 0.0, "the asperities adhere");
+    assert!(summary.interfaces[0].most_tensile_force < 0.0, "the asperities adhere");
 }
 
 /// Cohesive elements (the Camanho-Davila law, which damages), with VTK output: stopped at

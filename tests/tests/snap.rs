@@ -61,7 +61,7 @@ fn a_start_inside_the_jump_in_range_snaps_to_the_state_a_far_start_reaches() {
     let (a_flow, f_flow) = at_end_of_loading(&flowed.output_directory);
     println!("force at the end of loading after the damped-flow snap: {f_flow} (descent: {f_near})");
     assert!((a_flow - a_near).abs() < 1e-12 && (f_flow - f_near).abs() < 1e-6 * f_near.abs(), "{f_flow} vs {f_near}");
-    let (p_near, p_far) = (near.interfaces[0].pull_off_force, far.interfaces[0].pull_off_force);
+    let (p_near, p_far) = (near.interfaces[0].most_tensile_force, far.interfaces[0].most_tensile_force);
     println!("most tensile force: near start {p_near}, far start {p_far}");
     // sampled at different positions along the same branch (increments of 0.0021 / 0.009 nm)
     assert!((p_near - p_far).abs() < 1e-3 * p_far.abs(), "{p_near} vs {p_far}");
@@ -138,7 +138,8 @@ fn a_snap_whose_descent_stalls_follows_the_damped_flow_and_pulls_off_as_another_
     println!("{fallback}");
     assert!(fallback.contains("following the damped flow instead"), "{fallback}");
     assert_eq!(near.snap_method, "settle, the damped flow where a descent failed");
-    let (p_near, p_shipped) = (near.interfaces[0].pull_off_force, shipped.interfaces[0].pull_off_force);
+    let pull_off = |s: &stiction::run::RunSummary| s.interfaces[0].pull_off_force.expect("the sphere separated");
+    let (p_near, p_shipped) = (pull_off(&near), pull_off(&shipped));
     println!("pull-off: started at 0.25 nm {p_near}, at 0.507 nm {p_shipped}");
     // the same branch, sampled by increments that land at different places near its fold
     assert!((p_near - p_shipped).abs() < 1e-4 * p_shipped.abs(), "{p_near} vs {p_shipped}");

@@ -59,6 +59,7 @@ use crate::nonlinear::damped_flow::FlowSettings;
 use crate::nonlinear::{IncrementFailure, IncrementReport, NonlinearSolver, ReferenceScales};
 use crate::problem::NonlinearProblem;
 use crate::record::interface_tracker::{CommitContext, InterfaceInfo};
+use crate::record::summary::Units;
 use crate::record::{CommittedIncrement, InterfaceTracker, Observer, RunSummary};
 use crate::vector::{dot, norm};
 use std::collections::BTreeMap;
@@ -316,8 +317,7 @@ impl<'a> Driver<'a> {
 fn initial_summary(model: &Model, plan: &RunPlan, factor_nnz: usize) -> RunSummary {
     RunSummary {
         case: plan.name.clone(),
-        length_unit: plan.units.0.clone(),
-        force_unit: plan.units.1.clone(),
+        units: Units::of(&plan.units.0, &plan.units.1),
         status: "running".into(),
         n_nodes: model.mesh.nodes.len(),
         n_cells: model.sets.iter().map(|s| s.n_cells()).sum(),
@@ -567,7 +567,8 @@ impl Driver<'_> {
             }
         }
         if let Some(k) = step.until_separated {
-            let warning = self.tracker.still_attached(self.model, k);
+            let units = Units::of(&self.plan.units.0, &self.plan.units.1);
+            let warning = self.tracker.still_attached(self.model, k, &units);
             self.summary.warnings.extend(warning);
         }
         Ok(None)
@@ -774,6 +775,7 @@ impl Driver<'_> {
             limit_point,
             by_arc_length,
             plastic_dissipation,
+            footprint_dissipation: self.model.subscale_dissipation(),
             snap_dissipation: self.path.snap_dissipation,
         };
         let (events, separated) = self.tracker.update(self.model, context, step.until_separated);

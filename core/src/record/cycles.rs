@@ -18,10 +18,15 @@ pub struct InterfaceSample {
     /// Positive compressive.
     pub force: f64,
     pub contact_area: f64,
+    /// Points (or integration points) in contact.
+    pub n_contact: usize,
     /// Ohm; infinite without contact; None where not modelled.
     pub resistance: Option<f64>,
-    /// The continuum's plastic dissipation (the whole model's) at this state.
+    /// The plastic dissipation (the whole model's: continuum and footprint sliders) at this
+    /// state.
     pub plastic_dissipation: f64,
+    /// The part of it in the interfaces' footprint sliders.
+    pub footprint_dissipation: f64,
     /// The snaps' dissipation so far (the whole model's,
     /// [`super::CommittedIncrement::snap_dissipation`]).
     pub snap_dissipation: f64,
@@ -35,7 +40,11 @@ pub struct CycleSummary {
     pub max_approach: f64,
     pub max_force: f64,
     /// Most tensile force of the cycle (negative; 0 if never adhesive).
-    pub pull_off_force: f64,
+    pub most_tensile_force: f64,
+    /// The interface let go by the cycle's end ([`released`]).
+    pub separated: bool,
+    /// The most tensile force when the cycle separated, else None.
+    pub pull_off_force: Option<f64>,
     pub max_contact_area: f64,
     pub contact_resistance_at_max_force: Option<f64>,
     /// Work the flat does against adhesion to open the contact: the integral of -force over the
@@ -61,6 +70,14 @@ pub struct ResistanceAtForce {
     pub force: f64,
     pub loading: Option<f64>,
     pub unloading: Option<f64>,
+}
+
+/// An interface has let go at a state with `n_contact` points in contact and `force`, after a
+/// most tensile force `most_tensile`: no point is in contact and the force no longer holds
+/// half the most tensile one (a long-range law's tail, a few percent of it, is past the
+/// pull-off).
+pub fn released(n_contact: usize, force: f64, most_tensile: f64) -> bool {
+    n_contact == 0 && !(most_tensile < 0.0 && force < 0.5 * most_tensile)
 }
 
 /// Share of the whole approach range a reversal must exceed to count: smaller turns (an
@@ -116,7 +133,7 @@ pub fn cycles(samples: &[InterfaceSample]) -> Vec<CycleSummary> {
                     max_force = s.force;
                     c.contact_resistance_at_max_force = s.resistance;
                 }
-                c.pull_off_force = c.pull_off_force.min(s.force);
+                c.most_tensile_force = c.most_tensile_force.min(s.force);
                 c.max_contact_area = c.max_contact_area.max(s.contact_area);
                 if i > 0 {
                     let p = &part[i - 1];
@@ -129,6 +146,9 @@ pub fn cycles(samples: &[InterfaceSample]) -> Vec<CycleSummary> {
             }
             c.max_force = max_force.max(0.0);
             let (first, last) = (&part[0], &part[part.len() - 1]);
+            let touched = part.iter().any(|s| s.n_contact > 0 || s.force != 0.0);
+            c.separated = touched && released(last.n_contact, last.force, c.most_tensile_force);
+            c.pull_off_force = c.separated.then_some(c.most_tensile_force);
             c.plastic_dissipation = last.plastic_dissipation - first.plastic_dissipation;
             c.snap_dissipation = last.snap_dissipation - first.snap_dissipation;
             c
@@ -201,19 +221,21 @@ impl Observer for CyclesWriter {
 
     fn finished(&mut self, _model: &Model, summary: &RunSummary) -> Result<()> {
         let mut text = String::from(
-            "interface,cycle,max_approach,max_force,pull_off_force,max_contact_area,contact_resistance_at_max_force,opening_work,work_of_flat,plastic_dissipation,snap_dissipation\n",
+            "interface,cycle,max_approach,max_force,most_tensile_force,separated,pull_off_force,max_contact_area,contact_resistance_at_max_force,opening_work,work_of_flat,plastic_dissipation,snap_dissipation\n",
         );
         let mut rows = 0;
         for i in &summary.interfaces {
             for c in &i.cycles {
                 let resistance = c.contact_resistance_at_max_force.map_or(String::new(), |r| format!("{r:.10e}"));
+                let pull_off = c.pull_off_force.map_or(String::new(), |f| format!("{f:.10e}"));
                 text.push_str(&format!(
-                    "{},{},{:.10e},{:.10e},{:.10e},{:.10e},{resistance},{:.10e},{:.10e},{:.10e},{:.10e}\n",
+                    "{},{},{:.10e},{:.10e},{:.10e},{},{pull_off},{:.10e},{resistance},{:.10e},{:.10e},{:.10e},{:.10e}\n",
                     i.name,
                     c.cycle,
                     c.max_approach,
                     c.max_force,
-                    c.pull_off_force,
+                    c.most_tensile_force,
+                    c.separated,
                     c.max_contact_area,
                     c.opening_work,
                     c.work_of_flat,
@@ -239,8 +261,10 @@ mod tests {
             approach,
             force,
             contact_area: force.max(0.0),
+            n_contact: usize::from(force > 0.0),
             resistance: Some(resistance),
             plastic_dissipation: 0.0,
+            footprint_dissipation: 0.0,
             snap_dissipation: 0.0,
         }
     }
@@ -277,7 +301,9 @@ mod tests {
         for k in &c {
             assert_eq!(k.max_approach, 2.0);
             assert_eq!(k.max_force, 20.0);
-            assert_eq!(k.pull_off_force, -8.0);
+            assert_eq!(k.most_tensile_force, -8.0);
+            // each cycle ends at a = -1 with F = -8, still holding its most tensile force
+            assert!(!k.separated && k.pull_off_force.is_none());
             assert!((k.contact_resistance_at_max_force.unwrap() - (-2.0f64).exp()).abs() < 1e-15);
         }
         // opening work: integral of max(-F, 0) over the retraction from a = 2 to -1, with
@@ -286,6 +312,22 @@ mod tests {
         // linear pieces; the kink at a = -0.3 falls between samples, so allow the quadrature
         // error of one step)
         assert!((c[0].opening_work - 8.8).abs() < 0.2, "{}", c[0].opening_work);
+    }
+
+    #[test]
+    fn a_cycle_separates_only_when_nothing_holds_at_its_end() {
+        // a = 2 -> -1 with F = 10 a - 5 down to -8, then back to 0 (the neck broken) below a = -0.6
+        let mut s: Vec<InterfaceSample> = (0..=8).map(|k| sample(2.0 * k as f64 / 8.0, 2.5 * k as f64, 1.0)).collect();
+        for k in 1..=12 {
+            let a = 2.0 - 3.0 * k as f64 / 12.0;
+            let f = if a > -0.6 { (10.0 * a - 5.0).max(-8.0) } else { 0.0 };
+            s.push(sample(a, f, 1.0));
+        }
+        let c = &cycles(&s)[0];
+        assert!(c.separated);
+        assert_eq!((c.most_tensile_force, c.pull_off_force), (-8.0, Some(-8.0)));
+        // a tail of a long-range law (5% of the most tensile force) has let go; a hold at 60% has not
+        assert!(released(0, -0.4, -8.0) && !released(0, -4.8, -8.0) && !released(1, 0.0, -8.0));
     }
 
     #[test]

@@ -2,9 +2,9 @@
 //! viscous share) and their events (contact gained or lost, jumps, limit points), updated from
 //! their typed observables at each committed increment.
 
-use super::cycles::{InterfaceSample, cycles, resistance_hysteresis};
+use super::cycles::{InterfaceSample, cycles, released, resistance_hysteresis};
 use super::plastic_drawing::trailing_drawing;
-use super::summary::{Fold, InterfaceSummary};
+use super::summary::{Fold, InterfaceSummary, Units};
 use crate::model::Model;
 use crate::observables::InterfaceObservables;
 
@@ -31,8 +31,10 @@ pub struct CommitContext {
     /// The load parameter turned (arc length passed a limit point).
     pub limit_point: bool,
     pub by_arc_length: bool,
-    /// The continuum's plastic dissipation at the committed state.
+    /// The plastic dissipation at the committed state (the whole model's).
     pub plastic_dissipation: f64,
+    /// Its part in the interfaces' footprint sliders ([`Model::subscale_dissipation`]).
+    pub footprint_dissipation: f64,
     /// The snaps' dissipation so far ([`super::CommittedIncrement::snap_dissipation`]).
     pub snap_dissipation: f64,
 }
@@ -59,8 +61,10 @@ fn sample(o: &InterfaceObservables, context: CommitContext) -> Option<InterfaceS
         approach: o.approach?,
         force: o.force,
         contact_area: o.contact_area,
+        n_contact: o.n_contact,
         resistance: o.contact_resistance,
         plastic_dissipation: context.plastic_dissipation,
+        footprint_dissipation: context.footprint_dissipation,
         snap_dissipation: context.snap_dissipation,
     })
 }
@@ -111,7 +115,11 @@ impl InterfaceTracker {
             .collect();
         let n = model.contributions.len();
         let observed: Vec<InterfaceObservables> = (0..n).map(|k| observe(model, k)).collect();
-        let context = CommitContext { plastic_dissipation: model.dissipation(), ..Default::default() };
+        let context = CommitContext {
+            plastic_dissipation: model.dissipation(),
+            footprint_dissipation: model.subscale_dissipation(),
+            ..Default::default()
+        };
         let samples = observed.iter().map(|o| sample(o, context).into_iter().collect()).collect();
         Self { summaries, observed, had_contact: vec![false; n], samples }
     }
@@ -160,42 +168,68 @@ impl InterfaceTracker {
     /// the largest force magnitude so far.
     fn is_separated(&self, k: usize) -> bool {
         let (s, now) = (&self.summaries[k], &self.observed[k]);
-        let force_scale = s.max_force.max(-s.pull_off_force);
+        let force_scale = s.max_force.max(-s.most_tensile_force);
         self.had_contact[k] && now.n_contact == 0 && now.force.abs() <= 1e-3 * force_scale
     }
 
     /// A warning when interface `k`, which the step was to unload until separated, is still
     /// attached at its end: points still in contact, or a tensile force still above half the
-    /// most tensile one (a long-range law's tail, a few percent of it, is past the pull-off).
-    /// Its most tensile force so far is then not a pull-off. When the flat's work over the
-    /// trailing retraction went mostly into plastic flow, the warning says the continuum is
-    /// being drawn out under the attached points ([`trailing_drawing`]).
-    pub fn still_attached(&self, model: &Model, k: usize) -> Option<String> {
+    /// most tensile one ([`released`]). Its most tensile force so far is then not a pull-off.
+    /// When the flat's work over the trailing retraction went mostly into plastic flow, the
+    /// warning says the body is being drawn out under the attached points ([`trailing_drawing`])
+    /// and where that work went: the footprint sliders, the mesh's continuum, the snaps.
+    pub fn still_attached(&self, model: &Model, k: usize, units: &Units) -> Option<String> {
         let now = &self.observed[k];
-        let pull_off = self.summaries[k].pull_off_force;
-        let holding = pull_off < 0.0 && now.force < 0.5 * pull_off;
-        if self.is_separated(k) || (now.n_contact == 0 && !holding) {
+        if self.is_separated(k) || released(now.n_contact, now.force, self.summaries[k].most_tensile_force) {
             return None;
         }
+        let with =
+            |value: f64, unit: &str| if unit.is_empty() { format!("{value:.4}") } else { format!("{value:.4} {unit}") };
         let state = format!(
-            "interface '{}' had not separated by the end of its unloading step (t = {}): force {:.1} at approach {:.4} with {} points in contact, so its most tensile force ({:.1}) is not a pull-off",
+            "interface '{}' had not separated by the end of its unloading step (t = {}): force {} at approach {} with {} points in contact, so its most tensile force ({}) is not a pull-off",
             model.contributions[k].name(),
             model.time,
-            now.force,
-            now.approach.unwrap_or(0.0),
+            with(now.force, &units.force),
+            with(now.approach.unwrap_or(0.0), &units.length),
             now.n_contact,
-            pull_off
+            with(self.summaries[k].most_tensile_force, &units.force)
         );
         Some(match trailing_drawing(&self.samples[k]) {
-            Some(d) if d.is_drawing() => format!(
-                "{state}. The body under the attached points is being drawn out plastically: over the last {:.4} of retraction the flat did {:.4e} of work and the continuum dissipated {:.4e} of it plastically ({:.0}%). A point lets go only when its law's own peak is reached, which under perfect plasticity may take much further retraction or never happen (a cold weld); how much the body can carry under a point depends on the contact mesh (a point force's limit load falls as the mesh is refined, unless a footprint correction gives it), the footprint and hardening",
-                d.retraction,
-                d.work,
-                d.plastic_dissipation,
-                100.0 * d.plastic_share()
-            ),
+            Some(d) if d.is_drawing() => {
+                let share = |part: f64| format!("{} ({:.0}%)", with(part, &units.energy), 100.0 * part / d.work);
+                format!(
+                    "{state}. The body under the attached points is being drawn out plastically: over the last {} of retraction the flat did {} of work, of which {} went into the footprint sliders, {} into plastic flow of the mesh's continuum and {} into snaps. A point lets go only when its law's own peak is reached, which under perfect plasticity may take much further retraction or never happen (a cold weld); how much the body can carry under a point depends on the contact mesh (a point force's limit load falls as the mesh is refined), the footprint's declared limit and hardening",
+                    with(d.retraction, &units.length),
+                    with(d.work, &units.energy),
+                    share(d.footprint_dissipation),
+                    share(d.plastic_dissipation - d.footprint_dissipation),
+                    share(d.snap_dissipation)
+                )
+            }
             _ => format!("{state}; unload further to reach it"),
         })
+    }
+
+    /// Sets each interface's separation, pull-off and end state ([`InterfaceSummary`]).
+    fn close(&mut self) {
+        for (k, s) in self.summaries.iter_mut().enumerate() {
+            let now = &self.observed[k];
+            s.final_force = now.force;
+            s.final_approach = now.approach.unwrap_or(0.0);
+            s.final_n_contact = now.n_contact;
+            // engaged: touched, or carried a force (a bond pulled from the start is never "in contact")
+            let engaged = self.had_contact[k] || s.max_force > 0.0 || s.most_tensile_force < 0.0;
+            s.separated = engaged && released(now.n_contact, now.force, s.most_tensile_force);
+            (s.pull_off_force, s.approach_at_pull_off, s.contact_area_at_pull_off) = if s.separated {
+                (
+                    Some(s.most_tensile_force),
+                    Some(s.approach_at_most_tensile_force),
+                    Some(s.contact_area_at_most_tensile_force),
+                )
+            } else {
+                (None, None, None)
+            };
+        }
     }
 
     /// Maximum and pull-off forces, areas, work and viscous share of interface `k`.
@@ -219,10 +253,10 @@ impl InterfaceTracker {
                 s.point_share_of_approach_at_max_force = if a_now > 0.0 { compression / a_now } else { 0.0 };
             }
         }
-        if now.force < s.pull_off_force {
-            s.pull_off_force = now.force;
-            s.approach_at_pull_off = a_now;
-            s.contact_area_at_pull_off = now.contact_area;
+        if now.force < s.most_tensile_force {
+            s.most_tensile_force = now.force;
+            s.approach_at_most_tensile_force = a_now;
+            s.contact_area_at_most_tensile_force = now.contact_area;
         }
         s.max_contact_area = s.max_contact_area.max(now.contact_area);
         if let Some(r) = now.contact_resistance {
@@ -252,7 +286,7 @@ impl InterfaceTracker {
             return None;
         }
         let s = &mut self.summaries[k];
-        let scale = s.max_force.max(-s.pull_off_force).max(now.force.abs());
+        let scale = s.max_force.max(-s.most_tensile_force).max(now.force.abs());
         let kind = if context.limit_point {
             "limit_point"
         } else if !context.by_arc_length
@@ -287,6 +321,7 @@ impl InterfaceTracker {
     /// for each interface whose viscous regularisation dissipated too large a share of the
     /// gross work of the flat.
     pub fn finish(&mut self, t: f64) -> (Vec<InterfaceEvent>, Vec<String>) {
+        self.close();
         for (s, samples) in self.summaries.iter_mut().zip(&self.samples) {
             s.cycles = cycles(samples);
             s.contact_resistance_at_force = resistance_hysteresis(samples);
@@ -327,8 +362,10 @@ mod fold_tests {
             approach,
             force,
             contact_area: 0.0,
+            n_contact: 0,
             resistance: None,
             plastic_dissipation: 0.0,
+            footprint_dissipation: 0.0,
             snap_dissipation: 0.0,
         }
     }

@@ -18,8 +18,13 @@ pub struct Drawing {
     pub retraction: f64,
     /// The flat's work over it, W (positive when it pulled).
     pub work: f64,
-    /// The continuum's plastic dissipation over it, dD.
+    /// The plastic dissipation over it, dD (the whole model's: the mesh's continuum and the
+    /// footprint sliders).
     pub plastic_dissipation: f64,
+    /// The part of dD in the footprint sliders (the rest is the mesh's continuum).
+    pub footprint_dissipation: f64,
+    /// The snaps' dissipation over it.
+    pub snap_dissipation: f64,
 }
 
 impl Drawing {
@@ -62,6 +67,8 @@ pub fn trailing_drawing(samples: &[InterfaceSample]) -> Option<Drawing> {
         retraction,
         work,
         plastic_dissipation: last.plastic_dissipation - span[0].plastic_dissipation,
+        footprint_dissipation: last.footprint_dissipation - span[0].footprint_dissipation,
+        snap_dissipation: last.snap_dissipation - span[0].snap_dissipation,
     })
 }
 
@@ -74,8 +81,10 @@ mod tests {
             approach,
             force,
             contact_area: 0.0,
+            n_contact: 1,
             resistance: None,
             plastic_dissipation,
+            footprint_dissipation: 0.0,
             snap_dissipation: 0.0,
         }
     }

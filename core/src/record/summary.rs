@@ -13,9 +13,8 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Clone, Serialize, Deserialize, Default)]
 pub struct RunSummary {
     pub case: String,
-    /// The case's units as it states them (empty when it does not).
-    pub length_unit: String,
-    pub force_unit: String,
+    /// The unit of every number below, from the case's length and force units.
+    pub units: Units,
     pub status: String,
     pub message: Option<String>,
     pub final_time: f64,
@@ -73,6 +72,75 @@ pub struct RunSummary {
     pub interfaces: Vec<InterfaceSummary>,
 }
 
+/// The units of the numbers in `summary.json`: the case's length and force, and those they
+/// make (empty strings where the case states no units).
+#[derive(Debug, Clone, Serialize, Deserialize, Default, PartialEq)]
+pub struct Units {
+    pub length: String,
+    pub force: String,
+    /// length^2: contact areas.
+    pub area: String,
+    /// force x length: works and dissipations.
+    pub energy: String,
+    /// force / length^2.
+    pub stress: String,
+    /// Contact resistances are in ohm whatever the case's units.
+    pub resistance: String,
+}
+
+impl Units {
+    /// The units a case's `length` and `force` make; SI names where the pair has one
+    /// (nm and nN: aJ and GPa).
+    pub fn of(length: &str, force: &str) -> Self {
+        let prefix = |unit: &str, base: &str| -> Option<i32> {
+            let p = unit.strip_suffix(base)?;
+            Some(match p {
+                "" => 0,
+                "k" => 3,
+                "c" if base == "m" => -2,
+                "m" => -3,
+                "u" | "µ" => -6,
+                "n" => -9,
+                "p" => -12,
+                "f" => -15,
+                _ => return None,
+            })
+        };
+        let named = |exponent: i32, base: &str| -> Option<String> {
+            let p = match exponent {
+                9 => "G",
+                6 => "M",
+                3 => "k",
+                0 => "",
+                -3 => "m",
+                -6 => "u",
+                -9 => "n",
+                -12 => "p",
+                -15 => "f",
+                -18 => "a",
+                -21 => "z",
+                _ => return None,
+            };
+            Some(format!("{p}{base}"))
+        };
+        if length.is_empty() && force.is_empty() {
+            return Self { resistance: "ohm".into(), ..Default::default() };
+        }
+        let (l, f) = (prefix(length, "m"), prefix(force, "N"));
+        let energy = l.zip(f).and_then(|(l, f)| named(l + f, "J")).unwrap_or_else(|| format!("{force} {length}"));
+        let stress =
+            l.zip(f).and_then(|(l, f)| named(f - 2 * l, "Pa")).unwrap_or_else(|| format!("{force}/{length}^2"));
+        Self {
+            length: length.into(),
+            force: force.into(),
+            area: format!("{length}^2"),
+            energy,
+            stress,
+            resistance: "ohm".into(),
+        }
+    }
+}
+
 /// Key numbers of one interface over the run (forces positive compressive).
 #[derive(Debug, Clone, Serialize, Deserialize, Default)]
 pub struct InterfaceSummary {
@@ -90,10 +158,24 @@ pub struct InterfaceSummary {
     /// max_point_compression_at_max_force / approach_at_max_force: the share of the approach
     /// taken by the most compressed asperity (the rest is the continuum's deformation).
     pub point_share_of_approach_at_max_force: f64,
-    /// Most tensile force (negative; 0 if never adhesive) and where it occurred.
-    pub pull_off_force: f64,
-    pub approach_at_pull_off: f64,
-    pub contact_area_at_pull_off: f64,
+    /// Most tensile force over the run (negative; 0 if never adhesive), where it occurred and
+    /// the contact area then: always, separated or not.
+    pub most_tensile_force: f64,
+    pub approach_at_most_tensile_force: f64,
+    pub contact_area_at_most_tensile_force: f64,
+    /// The interface separated by the end of the run: it had contact, and at the end no point
+    /// is in contact and the force no longer holds half the most tensile one
+    /// ([`super::cycles::released`]).
+    pub separated: bool,
+    /// The pull-off: the most tensile force, where and with what area, when the interface
+    /// separated; None (null) when it did not (then it is only the most tensile force).
+    pub pull_off_force: Option<f64>,
+    pub approach_at_pull_off: Option<f64>,
+    pub contact_area_at_pull_off: Option<f64>,
+    /// The interface at the end of the run: force, approach and points in contact.
+    pub final_force: f64,
+    pub final_approach: f64,
+    pub final_n_contact: usize,
     pub max_contact_area: f64,
     /// Work done by the flat on the body over the run, integral of force d(approach)
     /// (trapezoidal): over a closed load-unload cycle, the energy dissipated (plus any elastic
@@ -170,5 +252,23 @@ impl Observer for SummaryWriter {
 
     fn finished(&mut self, _model: &Model, summary: &RunSummary) -> Result<()> {
         self.write(summary)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Units;
+
+    #[test]
+    fn units_follow_from_length_and_force() {
+        let nm = Units::of("nm", "nN");
+        assert_eq!((nm.area.as_str(), nm.energy.as_str(), nm.stress.as_str()), ("nm^2", "aJ", "GPa"));
+        let mm = Units::of("mm", "N");
+        assert_eq!((mm.energy.as_str(), mm.stress.as_str()), ("mJ", "MPa"));
+        let um = Units::of("um", "uN");
+        assert_eq!((um.energy.as_str(), um.stress.as_str()), ("pJ", "MPa"));
+        let odd = Units::of("in", "lbf");
+        assert_eq!((odd.energy.as_str(), odd.stress.as_str()), ("lbf in", "lbf/in^2"));
+        assert_eq!(Units::of("", "").energy, "");
     }
 }
