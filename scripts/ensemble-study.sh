@@ -28,6 +28,6 @@ for path in sorted(glob.glob(os.path.join(sys.argv[1], "*", "ensemble.json"))):
         x = s[q]
         return f"{x['mean'] * scale:.{digits}f} +- {x['ci95_half_width'] * scale:.{digits}f}"
     print(f"| {os.path.basename(os.path.dirname(path))} | {e['completed']}/{e['members']} | "
-          f"{show('n_contact_at_max_force', 1, 1)} | {show('max_force', 1e-3)} | {show('pull_off_force', 1e-3)} | "
+          f"{show('n_contact_at_max_force', 1, 1)} | {show('max_force', 1e-3)} | {show('most_tensile_force', 1e-3)} | "
           f"{show('max_contact_area', 1, 0)} |")
 PY

@@ -6,11 +6,11 @@
 # under the contact stays coarse. Faces of the 5 nm mesh (~11 nm^2) are no larger than the
 # footprint.
 # The runs carry the footprint correction (`points.footprint_correction`: each asperity in
-# series with its footprint's compliance and limit force, which the mesh does not resolve), as
-# the shipped cases do. --uncorrected adds the runs without it (footprints only; their
+# series with its footprint's compliance, which the mesh does not resolve), as the shipped
+# cases do. --uncorrected adds the runs without it (footprints only; their
 # unloading stops at -0.25 nm, past the pull-off, because on the finer meshes the separation of
 # the last asperities crawls), --point the runs with point forces.
-# Prints per resolution: free dofs, maximum force, pull-off (most tensile) force, maximum real
+# Prints per resolution: free dofs, maximum force, most tensile force, maximum real
 # area, plastic dissipation (the continuum's and the footprints' sliders'), largest equivalent
 # plastic strain, run time, and the change from the previous resolution.
 # Usage: [H="20 10 7 5"] bash scripts/mesh-convergence.sh [OUT_DIR] [--uncorrected] [--point]
@@ -65,7 +65,7 @@ previous = {}
 for label in labels:
     s = json.load(open(f"{out}/{label}/summary.json"))
     i = s["interfaces"][0]
-    row = (i["max_force"], i["pull_off_force"], i["max_contact_area"])
+    row = (i["max_force"], i["most_tensile_force"], i["max_contact_area"])
     kind = label.split("-")[0]
     change = ""
     if kind in previous:

@@ -51,7 +51,7 @@ def main(runs):
         r_max = s["contact_resistance_at_max_force"]
         print(
             f"| {os.path.basename(os.path.dirname(run.rstrip('/'))) or run}/{os.path.basename(run.rstrip('/'))} | {cells[0]} | {cells[1]} | "
-            f"{r_max:.3f} | {s['max_force'] / 1e3:.2f} | {-s['pull_off_force'] / 1e3:.2f} | {work} |"
+            f"{r_max:.3f} | {s['max_force'] / 1e3:.2f} | {-s['most_tensile_force'] / 1e3:.2f} | {work} |"
         )
 
 

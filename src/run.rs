@@ -12,7 +12,6 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
-use stiction_core::CoreError;
 use stiction_core::checkpoint::CheckpointPlan;
 use stiction_core::linear_solver::{FaerCholesky, Ordering, Precision};
 use stiction_core::model::Model;

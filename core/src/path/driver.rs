@@ -839,7 +839,7 @@ impl Driver<'_> {
     }
 
     fn finish(mut self, ending: Option<Ending>) -> Result<RunSummary> {
-        let (events, warnings) = self.tracker.finish(self.path.t);
+        let (events, warnings) = self.tracker.finish(self.path.t, &Units::of(&self.plan.units.0, &self.plan.units.1));
         self.count_totals();
         let s = &mut self.summary;
         s.plastic_dissipation = self.model.dissipation();

@@ -320,7 +320,7 @@ impl InterfaceTracker {
     /// At the end of the run (pseudo-time `t`): a `viscous_share_exceeded` event and a warning
     /// for each interface whose viscous regularisation dissipated too large a share of the
     /// gross work of the flat.
-    pub fn finish(&mut self, t: f64) -> (Vec<InterfaceEvent>, Vec<String>) {
+    pub fn finish(&mut self, t: f64, units: &Units) -> (Vec<InterfaceEvent>, Vec<String>) {
         self.close();
         for (s, samples) in self.summaries.iter_mut().zip(&self.samples) {
             s.cycles = cycles(samples);
@@ -341,9 +341,10 @@ impl InterfaceTracker {
                     cuts_before: 0,
                 });
                 warnings.push(format!(
-                    "interface '{}': the viscous regularisation dissipated {:.4e} = {:.1}% of the gross work of the flat, above the limit max_viscous_share = {}; lower its viscosity or use solver.continuation = \"arc-length\"",
+                    "interface '{}': the viscous regularisation dissipated {:.4e}{} = {:.1}% of the gross work of the flat, above the limit max_viscous_share = {}; lower its viscosity or use solver.continuation = \"arc-length\"",
                     i.name,
                     i.viscous_dissipation,
+                    if units.energy.is_empty() { String::new() } else { format!(" {}", units.energy) },
                     100.0 * i.viscous_share_of_work,
                     i.max_viscous_share
                 ));

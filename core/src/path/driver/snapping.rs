@@ -21,6 +21,7 @@ use crate::nonlinear::settle::{Settled, settle};
 use crate::nonlinear::{IncrementFailure, IncrementReport};
 use crate::path::StepWindow;
 use crate::problem::NonlinearProblem;
+use crate::record::summary::Units;
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::Ordering;
 use std::time::Instant;
@@ -178,7 +179,9 @@ impl Driver<'_> {
         let Some(snap) = self.snap_in_progress.take() else { return Ok(Flow::Continue) };
         let text = match &solved {
             Snapped::Settled(_, how, released) => {
-                format!("{name}: snapped at t = {target:.6} ({how}; dissipated {released:.6e})")
+                let energy = Units::of(&self.plan.units.0, &self.plan.units.1).energy;
+                let energy = if energy.is_empty() { String::new() } else { format!(" {energy}") };
+                format!("{name}: snapped at t = {target:.6} ({how}; dissipated {released:.6e}{energy})")
             }
             _ => format!("{name}: no stable state found at t = {target:.6}"),
         };
