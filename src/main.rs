@@ -76,7 +76,10 @@ enum Command {
     },
     /// Validate a case (schema, mesh, groups, materials, boundary conditions) without solving.
     Check {
+        /// The case file (TOML)
         case: PathBuf,
+        /// Override any case key before checking, as `stiction run --set` does, e.g.
+        /// --set mesh.parameters.h_contact=10
         #[arg(long = "set", value_name = "KEY=VALUE")]
         sets: Vec<String>,
     },
