@@ -137,18 +137,18 @@ fn body_material<'a>(case: &'a LoadedCase, key: &str) -> Result<&'a MaterialSpec
     }
 }
 
-/// `law` in series with the footprint of area `area`; the compliance, if not given, starts at
-/// 0 and is set per point by [`set_compliances`]. The footprint carries any force unless the
-/// case declares a limit ([`limit_force`]).
+/// `law` in series with the footprint; the compliance, if not given, starts at 0 and is set
+/// per point by [`set_compliances`]. The footprint carries any force unless the case declares
+/// a limit (`limit`, from [`limit_force`]).
 pub fn corrected_law(
     case: &LoadedCase,
     key: &str,
     spec: &FootprintCorrectionSpec,
-    area: f64,
+    limit: Option<f64>,
     law: Arc<dyn InterfaceLaw>,
 ) -> Result<Arc<dyn InterfaceLaw>> {
-    let limit_force = limit_force(case, key, spec, area)?.unwrap_or(f64::INFINITY);
-    let local = LocalFootprint { compliance: spec.compliance.unwrap_or(0.0), limit_force };
+    let local =
+        LocalFootprint { compliance: spec.compliance.unwrap_or(0.0), limit_force: limit.unwrap_or(f64::INFINITY) };
     Ok(Arc::new(SeriesWithFootprint::new(law, local).map_err(|m| case.error(key, m))?))
 }
 

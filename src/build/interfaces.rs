@@ -246,7 +246,7 @@ fn rigid_flat(
                             if c.limit_force.is_some() { "limit_force" } else { "limit_pressure" }
                         ))
                     );
-                    footprint_correction::corrected_law(case, &correction_key, c, points.footprint_area, law)?
+                    footprint_correction::corrected_law(case, &correction_key, c, limit, law)?
                 }
             };
             let mut flat = stiction_interfaces::RigidFlat::at_points(
