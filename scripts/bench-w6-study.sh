@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 cargo build --release --workspace --quiet
 point_case=cases/ru-rough-sphere/.bench-point-forces-w6.toml
 trap 'rm -f "$point_case"' EXIT
-sed '/^footprint_area/d; /^footprint_correction/d; s/^name = .*/name = "rough-w6-point-forces"/' \
+sed '/^footprint_area/d; /^footprint_correction/d; 0,/^name = .*/s//name = "rough-w6-point-forces"/' \
   cases/ru-rough-sphere/rough-w6.toml >"$point_case"
 for variant in default point-forces; do
   case=cases/ru-rough-sphere/rough-w6.toml
