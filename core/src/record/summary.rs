@@ -88,39 +88,34 @@ pub struct Units {
     pub resistance: String,
 }
 
+/// SI prefixes and their powers of ten, for the case's units and those they make.
+const SI_PREFIXES: [(&str, i32); 13] = [
+    ("G", 9),
+    ("M", 6),
+    ("k", 3),
+    ("", 0),
+    ("c", -2),
+    ("m", -3),
+    ("u", -6),
+    ("µ", -6),
+    ("n", -9),
+    ("p", -12),
+    ("f", -15),
+    ("a", -18),
+    ("z", -21),
+];
+
 impl Units {
     /// The units a case's `length` and `force` make; SI names where the pair has one
     /// (nm and nN: aJ and GPa).
     pub fn of(length: &str, force: &str) -> Self {
         let prefix = |unit: &str, base: &str| -> Option<i32> {
             let p = unit.strip_suffix(base)?;
-            Some(match p {
-                "" => 0,
-                "k" => 3,
-                "c" if base == "m" => -2,
-                "m" => -3,
-                "u" | "µ" => -6,
-                "n" => -9,
-                "p" => -12,
-                "f" => -15,
-                _ => return None,
-            })
+            SI_PREFIXES.iter().find(|(q, _)| *q == p).map(|&(_, e)| e)
         };
+        // named with a prefix only for multiples of 3 (no "cJ"), "u" before "µ"
         let named = |exponent: i32, base: &str| -> Option<String> {
-            let p = match exponent {
-                9 => "G",
-                6 => "M",
-                3 => "k",
-                0 => "",
-                -3 => "m",
-                -6 => "u",
-                -9 => "n",
-                -12 => "p",
-                -15 => "f",
-                -18 => "a",
-                -21 => "z",
-                _ => return None,
-            };
+            let (p, _) = SI_PREFIXES.iter().find(|&&(_, e)| e == exponent && e % 3 == 0)?;
             Some(format!("{p}{base}"))
         };
         if length.is_empty() && force.is_empty() {
@@ -163,9 +158,9 @@ pub struct InterfaceSummary {
     pub most_tensile_force: f64,
     pub approach_at_most_tensile_force: f64,
     pub contact_area_at_most_tensile_force: f64,
-    /// The interface separated by the end of the run: it had contact, and at the end no point
-    /// is in contact and the force no longer holds half the most tensile one
-    /// ([`super::cycles::released`]).
+    /// The interface separated by the end of the run: it had contact or carried a force, and
+    /// at the end no point is in contact and the force no longer holds half the most tensile
+    /// one ([`super::cycles::released`]).
     pub separated: bool,
     /// The pull-off: the most tensile force, where and with what area, when the interface
     /// separated; None (null) when it did not (then it is only the most tensile force).
@@ -267,6 +262,9 @@ mod tests {
         assert_eq!((mm.energy.as_str(), mm.stress.as_str()), ("mJ", "MPa"));
         let um = Units::of("um", "uN");
         assert_eq!((um.energy.as_str(), um.stress.as_str()), ("pJ", "MPa"));
+        let cm = Units::of("cm", "N");
+        // 10^-2 J and 10^4 Pa have no prefix: written as the product and the quotient
+        assert_eq!((cm.energy.as_str(), cm.stress.as_str()), ("N cm", "N/cm^2"));
         let odd = Units::of("in", "lbf");
         assert_eq!((odd.energy.as_str(), odd.stress.as_str()), ("lbf in", "lbf/in^2"));
         assert_eq!(Units::of("", "").energy, "");
