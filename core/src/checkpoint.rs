@@ -1,7 +1,9 @@
 //! Checkpoint files: a run's committed state written so that a later process can go on from it
 //! (ABAQUS's restart, MOOSE's recover). The file is one record in postcard's compact binary
-//! serde format behind a magic line and a format version, written atomically, so a checkpoint on
-//! disk is always a whole one: the state at one committed increment.
+//! serde format behind a magic line, a format version and the SHA-256 of the record, written
+//! atomically, so a checkpoint on disk is always a whole one: the state at one committed
+//! increment. A file whose record does not match its checksum (a disk or copy error, an edit)
+//! is refused, never resumed.
 //!
 //! What a run checkpoints and when is the step driver's business
 //! ([`crate::path::driver`]: its `Checkpoint`); this module holds the file format, the
@@ -17,9 +19,9 @@ use std::time::Duration;
 /// The first bytes of every checkpoint file.
 const MAGIC: &[u8] = b"stiction checkpoint\n";
 
-/// The version of the checkpoint layout; a file of another version is refused by name (7:
-/// the driver keeps its last stagnated attempt, for the fold rule).
-pub const FORMAT_VERSION: u32 = 8;
+/// The version of the checkpoint layout; a file of another version is refused by name (9: the
+/// record's checksum).
+pub const FORMAT_VERSION: u32 = 9;
 
 /// The committed state of a model ([`crate::model::Model::saved_state`]).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -75,19 +77,27 @@ pub struct CheckpointPlan {
     pub fingerprint: String,
 }
 
-/// Writes `record` to `path` atomically: the magic line, the format version, then postcard.
+/// The SHA-256 of a record.
+fn checksum(body: &[u8]) -> [u8; 32] {
+    use sha2::Digest;
+    sha2::Sha256::digest(body).into()
+}
+
+/// Writes `record` to `path` atomically: the magic line, the format version, the record's
+/// SHA-256, then the record (postcard).
 pub fn write<T: Serialize>(path: &Path, record: &T) -> Result<()> {
     let body = postcard::to_allocvec(record)
         .map_err(|e| CoreError::Checkpoint { path: path.to_path_buf(), message: format!("could not encode: {e}") })?;
-    let mut bytes = Vec::with_capacity(MAGIC.len() + 4 + body.len());
+    let mut bytes = Vec::with_capacity(MAGIC.len() + 4 + 32 + body.len());
     bytes.extend_from_slice(MAGIC);
     bytes.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    bytes.extend_from_slice(&checksum(&body));
     bytes.extend_from_slice(&body);
     write_atomically(path, &bytes)
 }
 
 /// Reads a record written by [`write()`]; Err names the file and what is wrong with it (missing,
-/// not a checkpoint, another format version, truncated or of another layout).
+/// not a checkpoint, another format version, corrupted, truncated or of another layout).
 pub fn read<T: DeserializeOwned>(path: &Path) -> Result<T> {
     let fail = |message: String| CoreError::Checkpoint { path: path.to_path_buf(), message };
     let bytes = std::fs::read(path).map_err(|e| fail(format!("could not read it ({e})")))?;
@@ -100,7 +110,15 @@ pub fn read<T: DeserializeOwned>(path: &Path) -> Result<T> {
              Stiction that wrote it"
         )));
     }
-    postcard::from_bytes(body).map_err(|e| fail(format!("could not be decoded ({e}): truncated or of another layout")))
+    let (sum, body) = body.split_first_chunk::<32>().ok_or_else(|| fail("is truncated".into()))?;
+    if *sum != checksum(body) {
+        return Err(fail(
+            "is corrupted: its contents do not match the checksum written with them (a truncated copy, a disk \
+             error or an edit); it cannot be resumed: start the run afresh with --overwrite"
+                .into(),
+        ));
+    }
+    postcard::from_bytes(body).map_err(|e| fail(format!("could not be decoded ({e}): of another layout")))
 }
 
 #[cfg(test)]
@@ -139,12 +157,32 @@ mod tests {
         std::fs::write(&path, &other).unwrap();
         let error = read::<ModelState>(&path).unwrap_err().to_string();
         assert!(error.contains(&format!("format version {}", FORMAT_VERSION + 1)), "{error}");
-        let mut truncated = MAGIC.to_vec();
-        truncated.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
-        truncated.extend_from_slice(&postcard::to_allocvec(&state()).unwrap()[..20]);
-        std::fs::write(&path, &truncated).unwrap();
+        write(&path, &state()).unwrap();
+        let whole = std::fs::read(&path).unwrap();
+        std::fs::write(&path, &whole[..whole.len() - 20]).unwrap();
+        let error = read::<ModelState>(&path).unwrap_err().to_string();
+        assert!(error.contains("is corrupted"), "{error}");
+        std::fs::write(&path, &whole[..MAGIC.len() + 10]).unwrap();
         let error = read::<ModelState>(&path).unwrap_err().to_string();
         std::fs::remove_file(&path).unwrap();
-        assert!(error.contains("could not be decoded"), "{error}");
+        assert!(error.contains("is truncated"), "{error}");
+    }
+
+    /// A single flipped bit anywhere in the record (a displacement, a state, the time) is
+    /// found, and the file is refused rather than resumed with other numbers.
+    #[test]
+    fn a_checkpoint_with_any_changed_byte_is_refused_as_corrupted() {
+        let path = std::env::temp_dir().join(format!("stiction-corrupted-{}.bin", std::process::id()));
+        write(&path, &state()).unwrap();
+        let whole = std::fs::read(&path).unwrap();
+        let record_start = MAGIC.len() + 4 + 32;
+        for at in [record_start, record_start + 9, whole.len() / 2, whole.len() - 1] {
+            let mut changed = whole.clone();
+            changed[at] ^= 0x10;
+            std::fs::write(&path, &changed).unwrap();
+            let error = read::<ModelState>(&path).unwrap_err().to_string();
+            assert!(error.contains("is corrupted"), "byte {at}: {error}");
+        }
+        std::fs::remove_file(&path).unwrap();
     }
 }

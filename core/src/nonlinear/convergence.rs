@@ -12,11 +12,10 @@
 //! from iteration [`NewtonSettings::stagnation_iterations`] (8) on, when ||r|| fell by less than
 //! [`STAGNATION_FALL`] (5%) over the last [`STAGNATION_WINDOW`] (3) iterations (ABAQUS abandons
 //! an increment on its residuals' trend from its 8th iteration, I_R, too). Such an increment
-//! has no equilibrium near its start (a fold, a contact front that cannot settle): measured on
-//! the snap-heavy spheres of `cases/ru-sphere` (4 nm mesh), its iterations after the plateau
-//! (up to 25, then as many again by full Newton after the quasi-Newton ones) made half the run's
-//! time, and 6 of about 1,300 increments that converged would have been abandoned (to be cut:
-//! the path goes on in shorter increments).
+//! has no equilibrium near its start (a fold, a contact front that cannot settle): running it
+//! to the iteration limit costs as much as the rest of a snap-heavy run, and cutting it lets the
+//! path go on in shorter increments. The rule gives up a few increments that would have
+//! converged late; they are cut and solved again.
 //!
 //! An increment still falling steadily at its iteration limit is a near miss, not a failure:
 //! where its residuals' rate over the last [`STAGNATION_WINDOW`] iterations, rho, predicts
@@ -24,14 +23,9 @@
 //! residual and for the correction, each shrinking at rho), the iterations go on, as long as
 //! the prediction holds and at most that many past the limit (ABAQUS's logarithmic rate check,
 //! which lets an increment run past I_R while convergence is predicted within I_C, does the
-//! same). Near a fold Newton converges only linearly: in 1,200 s of the w = 6 plastic 3D
-//! quarter's cycle (4 nm mesh) 7 of the 15 attempts that ran out of iterations ended at
-//! residuals of 7.9e-8 to 9.7e-7 nN, inside the range the converged increments ended at
-//! (8e-12 to 1.1e-6 nN: the test follows the force scale), and were cut and solved again in
-//! shorter increments. With the rule, in the same 1,200 s, 5 attempts went on past the limit
-//! and converged (at 26 to 29 iterations), 1 of the 13 that ran out ended below 1e-6 nN, and
-//! the run reached the same load (t = 0.393, 2026-12-02). The shipped `smooth-lj-w6` has no
-//! attempt the rule lets go on (its path is unchanged).
+//! same). Near a fold Newton converges only linearly, and such attempts end at residuals within
+//! the range converged increments end at; cutting them would solve the same state again in
+//! shorter increments.
 //!
 //! A step of a time integrator (a damped flow's) needs less: it also counts as converged at a
 //! full correction within its own tolerance, and is given up at its own iteration limit

@@ -119,11 +119,9 @@ pub const INTEGRATOR_MIN_ALPHA: f64 = 0.1;
 /// and the remedy is a shorter step, which the integrator takes at once, not more iterations
 /// (a stiff integrator's Newton iteration stops on divergence; Hairer and Wanner, Solving ODEs
 /// II, IV.8). Such steps (a surface node thrown into the repulsive wall, ||r|| from 1 to 1e8;
-/// or line-search steps of 0.02 to 0.0002 at a stalled ||r||) ran their 10 iterations with 6
-/// line-search trials each and were then tried again by full Newton: 1.3 to 1.8 s each on the
-/// `smooth-lj-w6` jump-in, against 0.05 s for an accepted step (a scratch build that measured
-/// the flow's error in another norm, with 32 of them); the shipped jump-in, with 3, now takes
-/// 57 s instead of 63 s on the same path (2026-11-29, one thread, side by side). Near
+/// or line-search steps of 0.02 to 0.0002 at a stalled ||r||) would otherwise run their 10
+/// iterations with 6 line-search trials each and then be tried again by full Newton, at tens
+/// of times the cost of an accepted step. Near
 /// convergence a line search may fail in rounding: ||r|| is then far below `initial`, and the
 /// direction below the tolerance (a step solved to equilibrium, tolerance 0, is judged by
 /// divergence alone). An equilibrium solve goes on (it has no shorter step).

@@ -33,10 +33,8 @@
 //! of the run). A damped flow's step that fails (it was too long) is tried once by full Newton
 //! and starts no such stretch; nor is a flow's step solved in a stretch, or counted against it
 //! (the stretch is for the hard equilibrium path: the flow's own matrix K + c M is better
-//! conditioned, and until 2026-12-01 the flow steps of a snap after a failed increment ran
-//! the stretch out at a factorization per iteration, 119 of the 741 factorizations begun in
-//! the w = 6 plastic 3D quarter's jump-in, `docs/ru-rough-sphere.md`, "Flow steps in a
-//! full-Newton stretch"). Convergence is judged by the same test as Newton's
+//! conditioned, and solved in the stretch, the flow steps of a snap after a failed increment
+//! would run it out at a factorization per iteration). Convergence is judged by the same test as Newton's
 //! ([`NewtonSettings::converged`], or a time integrator step's own accuracy,
 //! [`NonlinearProblem::integrator_step`]): the criteria are not loosened.
 

@@ -823,7 +823,7 @@ impl Driver<'_> {
             frame_due,
             fraction_done: if self.t_end > 0.0 { self.path.t / self.t_end } else { 1.0 },
             description: format!(
-                "{}: t = {:.4} dt = {:.2e}, {} Newton its, |r| = {last:.2e}",
+                "{}: t = {:.4} dt = {:.2e}, {} iterations, |r| = {last:.2e}",
                 self.plan.steps[si].name, self.path.t, self.load.dt, report.iterations
             ),
             plastic_dissipation,

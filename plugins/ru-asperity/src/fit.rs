@@ -20,7 +20,13 @@ pub struct Row {
     pub area: f64,
     pub loading: bool,
     pub max_distance: f64,
+    /// The row's line in the table (from 1), for messages.
+    pub line: usize,
 }
+
+/// The largest magnitude a table's number may have: the least-squares fit squares the
+/// powers of the distances and the values, which must stay finite.
+pub const LARGEST_VALUE: f64 = 1e100;
 
 /// A parsed table with its metadata.
 #[derive(Debug, Clone, Default)]
@@ -73,7 +79,11 @@ pub fn parse_table(text: &str) -> Result<Table, String> {
             return Err(format!("line {n}: expected 5 columns, found {}", f.len()));
         }
         let num = |k: usize, name: &str| match f[k].parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
+            Ok(v) if v.is_finite() && v.abs() <= LARGEST_VALUE => Ok(v),
+            Ok(v) if v.is_finite() => Err(format!(
+                "line {n}, column {} ({name}): {v:e} is too large to fit (at most {LARGEST_VALUE:e} in magnitude)",
+                k + 1
+            )),
             _ => Err(format!("line {n}, column {} ({name}): expected a finite number, found '{}'", k + 1, f[k])),
         };
         let loading = match f[3] {
@@ -87,6 +97,7 @@ pub fn parse_table(text: &str) -> Result<Table, String> {
             area: num(2, "area")?,
             loading,
             max_distance: if loading { 0.0 } else { num(4, "max_distance")? },
+            line: n,
         });
     }
     if !header_seen {
@@ -126,12 +137,26 @@ fn errors(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
     (rms, r.iter().fold(0.0f64, |m, v| m.max(v.abs())))
 }
 
+/// Err when the rows of a branch do not span distinct distances (a polynomial in the distance
+/// needs them), naming the branch and its lines.
+fn distinct_distances(rows: &[&Row], branch: &str) -> Result<(), String> {
+    if x_max(rows) > x_min(rows) {
+        return Ok(());
+    }
+    let (first, last) = (rows[0].line, rows[rows.len() - 1].line);
+    Err(format!(
+        "the {branch} rows (lines {first} to {last}) all have the distance {}: a fit needs distinct distances",
+        rows[0].distance
+    ))
+}
+
 /// Fits a calibration (loading order, unloading order).
 pub fn fit(table: &Table, loading_order: usize, unloading_order: usize) -> Result<Calibration, String> {
     let load: Vec<&Row> = table.rows.iter().filter(|r| r.loading).collect();
     if load.is_empty() {
         return Err("the table has no loading rows".into());
     }
+    distinct_distances(&load, "loading")?;
     let x: Vec<f64> = load.iter().map(|r| r.distance).collect();
     let lf = least_squares(&x, &load.iter().map(|r| r.force).collect::<Vec<_>>(), loading_order)
         .map_err(|e| format!("loading force: {e}"))?;
@@ -154,6 +179,7 @@ pub fn fit(table: &Table, loading_order: usize, unloading_order: usize) -> Resul
     };
     for m in maxima {
         let rows: Vec<&Row> = table.rows.iter().filter(|r| !r.loading && r.max_distance == m).collect();
+        distinct_distances(&rows, &format!("unloading (max_distance {m})"))?;
         let x: Vec<f64> = rows.iter().map(|r| r.distance).collect();
         let f: Vec<f64> = rows.iter().map(|r| r.force).collect();
         let a: Vec<f64> = rows.iter().map(|r| r.area).collect();

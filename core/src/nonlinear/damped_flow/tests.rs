@@ -417,9 +417,8 @@ fn against_a_stiffness_drag_a_linear_body_moves_straight_to_its_equilibrium() {
 /// estimated from the velocity's decay is y's alone and below the flow's negligible move: the
 /// end is tried, and misses (x's end is 1 away). That miss must cost no more than a retry: the
 /// flow takes at most the steps the two runs without a miss extrapolate to (linearly in log
-/// y_0), plus 2, and tries the end at most once more. Before (2026-11-29) the bar after a
-/// miss, half the short estimate, held off the end until x had all but come to rest: 108
-/// steps against 57 and 53 from the two smaller starts (62 now).
+/// y_0), plus 2, and tries the end at most once more (a bar after a miss of half the short
+/// estimate held off the end until x had all but come to rest: about twice the steps).
 #[test]
 fn a_direct_end_missed_while_a_light_part_relaxes_is_tried_again_once_the_flow_moved_on() {
     let run = |y_0: f64| {
