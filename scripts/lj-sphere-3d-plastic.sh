@@ -5,7 +5,7 @@
 # to 2 nm, unloaded to -3 nm, folds crossed by snaps, refactorization cost ratio 20; w = 1: back
 # to -1 nm, folds crossed by arc length), on one of two meshes:
 #   4nm: h_contact = 4 nm, layer = 8 nm, r_fine = 30 nm (11,872 free dofs; 21 min for the w = 3
-#        cycle and 28 min for w = 6 on one thread, 2026-12-02)
+#        cycle and 28 min for w = 6 on one thread)
 #   2nm: the shipped h_contact = 2 nm with r_fine = 65 nm (79,716 free dofs; many hours: run it
 #        in sittings, each ended by Ctrl-C or `--stop-after`, and go on with --resume)
 #   bash scripts/lj-sphere-3d-plastic.sh W MESH OUT [more `stiction run` arguments]

@@ -33,7 +33,7 @@ struct CaseInput {
 enum Command {
     /// Solve a case: writes history.csv (one row per converged increment, flushed as it goes),
     /// VTK files (<name>_NNNNN.vtu + <name>.pvd for ParaView) and summary.json.
-    #[command(after_help = stiction::case::defaults_help())]
+    #[command(after_help = stiction::case::reference::defaults_list())]
     Run {
         #[command(flatten)]
         input: CaseInput,
@@ -100,10 +100,10 @@ enum Command {
         /// Output calibration file.
         #[arg(short, long)]
         output: PathBuf,
-        /// Order of the loading polynomials (default 4).
+        /// Order of the loading polynomials.
         #[arg(long, default_value_t = 4)]
         loading_order: usize,
-        /// Order of the unloading polynomials (default 5).
+        /// Order of the unloading polynomials.
         #[arg(long, default_value_t = 5)]
         unloading_order: usize,
         /// Work of adhesion (J/m^2) if the table does not state it.
@@ -130,15 +130,27 @@ enum Command {
         /// Output CSV.
         #[arg(short, long)]
         output: PathBuf,
-        /// Samples per branch (default 60).
+        /// Samples per branch.
         #[arg(long, default_value_t = 60)]
         samples: usize,
+    },
+    /// Print a reference generated from the program itself (docs/reference/ holds the same).
+    Reference {
+        #[command(subcommand)]
+        what: ReferenceCommand,
     },
     /// Plugin tools.
     Plugin {
         #[command(subcommand)]
         command: PluginCommand,
     },
+}
+
+#[derive(Subcommand)]
+enum ReferenceCommand {
+    /// Every case-file key: its value type, default, unit, allowed range, what it applies to and
+    /// what it means (Markdown; docs/reference/case-keys.md).
+    CaseKeys,
 }
 
 #[derive(Subcommand)]
@@ -154,7 +166,7 @@ enum PluginCommand {
         /// Configuration file for laws that take one (e.g. a calibration).
         #[arg(long = "config-file")]
         config_file: Option<PathBuf>,
-        /// Gap scale of the test path (default 1; use the law's length scale, e.g. z0).
+        /// Gap scale of the test path (the law's length scale, e.g. z0).
         #[arg(long, default_value_t = 1.0)]
         gap_scale: f64,
         /// Extra directories to search.
@@ -163,35 +175,69 @@ enum PluginCommand {
     },
 }
 
-fn describe(l: &stiction_interfaces::plugin::LawLibrary) {
+fn describe(l: &stiction_interfaces::plugin::LawLibrary, origin: Option<&str>) {
+    use stiction::case::reference::number;
     let gap = if l.gap_dimension == 3 { "mixed mode: normal and tangential opening" } else { "normal gap" };
-    println!("{} {} ({:?}, {gap}, {} state variables) [{}]", l.name, l.version, l.kind, l.n_state, l.origin);
+    let kind = match l.kind {
+        stiction_core::interface_law::LawKind::TractionPerArea => "traction per area",
+        stiction_core::interface_law::LawKind::ForcePerPoint => "force per point",
+    };
+    let origin = origin.map(|o| format!(" [{o}]")).unwrap_or_default();
+    println!("  {} {} ({kind}, {gap}, {} state variables){origin}", l.name, l.version, l.n_state);
     if let Some(c) = &l.config_description {
-        println!("    config_file: {c}");
+        println!("      config_file: {c}");
     }
+    let bound = |x: f64| if x.is_infinite() { "inf".to_string() } else { number(x) };
     for p in &l.parameters {
-        let default = p.default.map(|d| format!("default {d}")).unwrap_or_else(|| "required".into());
-        println!("    {} [{}]: {}; {default}; range [{}, {}]", p.name, p.unit, p.description, p.min, p.max);
+        let default = p.default.map(|d| format!("default {}", number(d))).unwrap_or_else(|| "required".into());
+        println!(
+            "      {} [{}]: {}; {default}; range [{}, {}]",
+            p.name,
+            p.unit,
+            p.description,
+            bound(p.min),
+            bound(p.max)
+        );
     }
 }
 
+/// Every law once: the built-in ones, then the plugins found; a plugin library of a built-in
+/// law's name (the built-in laws' own plugin builds sit in target/release) is named under it,
+/// since a case that names the law gets the built-in one.
 fn list_plugins(dirs: &[PathBuf]) {
     let registry = stiction::laws::LawRegistry::new(dirs);
-    println!("built-in laws:");
+    let found = registry.discover();
+    let builtin_names: Vec<&str> = registry.builtin().iter().map(|l| l.name.as_str()).collect();
+    println!("built-in laws (a case names them with law = \"NAME\"):");
     for l in registry.builtin() {
-        describe(l);
+        describe(l, None);
+        for (path, r) in &found {
+            if r.as_ref().is_ok_and(|p| p.name == l.name) {
+                println!(
+                    "      also found as a plugin library: {} (used only when a case gives its path)",
+                    path.display()
+                );
+            }
+        }
     }
     let dirs: Vec<String> = registry.search_dirs().iter().map(|d| d.display().to_string()).collect();
     println!("plugins on the search path [{}]:", dirs.join(", "));
-    let found = registry.discover();
-    if found.is_empty() {
-        println!("  (none)");
-    }
-    for (path, r) in found {
+    let mut any = false;
+    for (path, r) in &found {
         match r {
-            Ok(l) => describe(&l),
-            Err(e) => println!("  {}: not usable: {e}", path.display()),
+            Ok(l) if builtin_names.contains(&l.name.as_str()) => {}
+            Ok(l) => {
+                any = true;
+                describe(l, Some(&path.display().to_string()));
+            }
+            Err(e) => {
+                any = true;
+                println!("  {}: not usable: {e}", path.display());
+            }
         }
+    }
+    if !any {
+        println!("  (none besides the built-in laws)");
     }
 }
 
@@ -355,6 +401,7 @@ fn main() -> ExitCode {
             let options = RunOptions {
                 out,
                 progress: !quiet && std::io::stderr().is_terminal(),
+                progress_label: None,
                 overwrite,
                 interrupt: Some(interrupt_on_ctrl_c()),
                 resume,
@@ -445,7 +492,18 @@ fn main() -> ExitCode {
             );
             Ok(())
         }
+        Command::Reference { what: ReferenceCommand::CaseKeys } => {
+            print!("{}", case::reference::case_keys_markdown());
+            Ok(())
+        }
         Command::Plugins { dirs } => {
+            if let Some(file) = dirs.iter().find(|d| d.exists() && !d.is_dir()) {
+                eprintln!(
+                    "error: --plugin-path '{}' is a file; give folders that hold plugin libraries",
+                    file.display()
+                );
+                return ExitCode::from(2);
+            }
             list_plugins(&dirs);
             Ok(())
         }

@@ -48,7 +48,7 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
         arc.push_str(&format!("; {} snapped to a stable state ({})", summary.snaps, summary.snap_method));
     }
     let mut lines = vec![format!(
-        "{}: {} increments ({} cut{arc}), {} Newton iterations, {} factorizations, {} s on {} thread{} ({} s in attempts not committed); {} free dofs; output in {}",
+        "{}: {} increments ({} cut{arc}), {} iterations (Newton or quasi-Newton), {} factorizations, {} s on {} thread{} ({} s in attempts not committed); {} free dofs; output in {}",
         summary.case,
         summary.increments,
         summary.cut_increments,

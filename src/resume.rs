@@ -47,10 +47,22 @@ pub fn checkpoint_path(case: &LoadedCase, out: &Path) -> Result<PathBuf> {
     if path.exists() {
         return Ok(path);
     }
-    let why = if out.join("summary.json").exists() {
-        "the run there completed (its checkpoint is removed then) or stopped before its first increment"
-    } else {
-        "no run of this case has written there; give the folder of the run to resume with --out"
+    let status = std::fs::read_to_string(out.join("summary.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<Value>(&t).ok())
+        .and_then(|s| s["status"].as_str().map(str::to_string));
+    let why = match status.as_deref() {
+        Some("completed") => {
+            "the run there completed (a completed run removes its checkpoint): there is nothing to resume".to_string()
+        }
+        Some("running") => "the run there was stopped before its first checkpoint (its summary.json still says \
+             \"running\": it was killed); start it afresh with --overwrite, and set output.checkpoint_minutes \
+             lower to checkpoint sooner"
+            .to_string(),
+        Some(other) => format!(
+            "the run there ended \"{other}\" before its first increment was committed; start it afresh with --overwrite"
+        ),
+        None => "no run of this case has written there; give the folder of the run to resume with --out".to_string(),
     };
     Err(StictionError::Output {
         path: out.to_path_buf(),

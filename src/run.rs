@@ -34,6 +34,8 @@ pub struct RunOptions {
     pub out: Option<PathBuf>,
     /// Show progress (normally: stderr is a terminal).
     pub progress: bool,
+    /// What the progress line starts with (a sweep's "run 2 of 3: ...").
+    pub progress_label: Option<String>,
     /// Replace an earlier run in the output folder (otherwise a non-empty folder is refused).
     pub overwrite: bool,
     /// Set to stop the run after the increment in progress (Ctrl-C).
@@ -75,7 +77,12 @@ pub fn run(case: &LoadedCase, options: &RunOptions) -> Result<RunSummary> {
 }
 
 /// The observers of a run into `out`: the files every run writes, plots, and progress.
-fn observers(case: &LoadedCase, built: &BuiltModel, out: &std::path::Path, progress: bool) -> Vec<Box<dyn Observer>> {
+fn observers(
+    case: &LoadedCase,
+    built: &BuiltModel,
+    out: &std::path::Path,
+    progress: Option<Option<&str>>,
+) -> Vec<Box<dyn Observer>> {
     let model = &built.model;
     let mut list: Vec<Box<dyn Observer>> = vec![
         Box::new(HistoryRecorder::new(
@@ -93,8 +100,8 @@ fn observers(case: &LoadedCase, built: &BuiltModel, out: &std::path::Path, progr
     list.push(Box::new(SummaryWriter::new(out)));
     list.push(Box::new(CyclesWriter::new(out)));
     list.push(Box::new(crate::plots::RunPlots::new(out, &case.name)));
-    if progress {
-        list.push(Box::new(crate::progress::ProgressDisplay::new()));
+    if let Some(label) = progress {
+        list.push(Box::new(crate::progress::ProgressDisplay::new(label)));
     }
     list
 }
@@ -166,6 +173,27 @@ fn run_built(
     pool.install(|| solve_built(case, built, options, checkpoint))
 }
 
+/// Where a run stopped with an error after its summary was first written (status "running"),
+/// e.g. a degenerate element found at the first assembly: the summary says "failed" with the
+/// reason, so it never describes a run that is not running as running.
+fn mark_failed(out: &std::path::Path, reason: &str) {
+    let path = out.join("summary.json");
+    let Some(mut summary) =
+        std::fs::read_to_string(&path).ok().and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+    else {
+        return;
+    };
+    if summary["status"] != "running" {
+        return;
+    }
+    summary["status"] = "failed".into();
+    summary["message"] = reason.into();
+    let text = serde_json::to_string_pretty(&summary).expect("a summary serializes");
+    if let Err(e) = stiction_core::output::write_atomically(&path, text.as_bytes()) {
+        eprintln!("warning: {} not marked failed: {e}", path.display());
+    }
+}
+
 /// The stack of each thread of a run's own pool: 8 MiB, Linux's default for a main thread.
 const RUN_THREAD_STACK_BYTES: usize = 8 << 20;
 
@@ -177,6 +205,7 @@ fn solve_built(
     checkpoint: Option<Checkpoint>,
 ) -> Result<RunSummary> {
     let out = output_directory(case, options);
+    let _lock = crate::output_folder::lock(&out)?;
     if checkpoint.is_none() {
         crate::output_folder::prepare(&out, options.overwrite)?;
     }
@@ -184,7 +213,7 @@ fn solve_built(
         let path = out.join(format!("{name}_points.csv"));
         crate::build::write_points_csv(&path, points)?;
     }
-    let mut observers = observers(case, built, &out, options.progress);
+    let mut observers = observers(case, built, &out, options.progress.then_some(options.progress_label.as_deref()));
     let plan = RunPlan {
         name: case.name.clone(),
         units: case.case.units.as_ref().map_or_else(Default::default, |u| (u.length.clone(), u.force.clone())),
@@ -227,12 +256,13 @@ fn solve_built(
         },
         MethodSpec::Newton => Box::new(NewtonSolver { settings: built.newton.clone() }),
     };
-    let summary = match checkpoint {
-        None => run_steps(&mut built.model, &plan, &mut linear, nonlinear.as_mut(), &mut observers)?,
+    let result = match checkpoint {
+        None => run_steps(&mut built.model, &plan, &mut linear, nonlinear.as_mut(), &mut observers),
         Some(checkpoint) => {
-            resume_steps(&mut built.model, &plan, &mut linear, nonlinear.as_mut(), &mut observers, checkpoint)?
+            resume_steps(&mut built.model, &plan, &mut linear, nonlinear.as_mut(), &mut observers, checkpoint)
         }
     };
+    let summary = result.inspect_err(|e| mark_failed(&out, &e.to_string()))?;
     let resumable = out.join(crate::resume::CHECKPOINT_FILE).exists();
     for w in &summary.warnings {
         eprintln!("warning: {w}");

@@ -35,6 +35,7 @@ pub fn run_sweep(path: &Path, sets: &[String], options: &RunOptions) -> Result<V
         return Err(base.error("sweep.values", "needs at least one value"));
     }
     let out = output_directory(&base, options);
+    let _lock = crate::output_folder::lock(&out)?;
     let fingerprint = crate::resume::fingerprint(&base);
     if options.resume {
         check_same_sweep(&base, &out, &fingerprint)?;
@@ -46,12 +47,13 @@ pub fn run_sweep(path: &Path, sets: &[String], options: &RunOptions) -> Result<V
     let label = sweep.label.clone().unwrap_or_else(|| sweep.key.clone());
     let mut summaries = Vec::new();
     let mut curves = Vec::new();
-    for v in &sweep.values {
+    for (k, v) in sweep.values.iter().enumerate() {
         let mut run_sets = sets.to_vec();
         run_sets.push(format!("{}={v}", sweep.key));
         let case = crate::case::load(path, &run_sets)?;
         let folder = out.join(format!("{}={v}", label.replace(['/', ' '], "_")));
-        let run_options = RunOptions { out: Some(folder.clone()), ..options.clone() };
+        let progress_label = Some(format!("run {} of {}: {label} = {v}", k + 1, sweep.values.len()));
+        let run_options = RunOptions { out: Some(folder.clone()), progress_label, ..options.clone() };
         let summary = if options.resume {
             resume_member(&case, &folder, &format!("{label} = {v}"), run_options)?
         } else {

@@ -122,6 +122,8 @@ const CASES: &[Broken] = &[
         "the calibration has 6 J/m^2 but the case expects 3 J/m^2",
     ),
     bad(&["check", ROUGH, "--set", "interfaces.0.points.file=\"no-such.csv\""], "no-such.csv"),
+    bad(&["check", ROUGH, "--set", "plugin_path=[\"rough-w6.toml\"]"], "plugin_path[0]"),
+    bad(&["plugins", "--plugin-path", "Cargo.toml"], "--plugin-path 'Cargo.toml' is a file"),
 ];
 
 /// `stiction calibrate` on broken tables: each names the file, the line and the column.
@@ -140,6 +142,14 @@ const TABLES: &[Broken] = &[
         "line 3: branch must be 'loading' or 'unloading'",
     ),
     bad(&["calibrate", "{scratch}/no-such-table.csv", "-o", "{scratch}/out.toml"], "no-such-table.csv"),
+    bad(
+        &["calibrate", "{scratch}/huge-force.csv", "-o", "{scratch}/out.toml"],
+        "huge-force.csv': line 3, column 2 (force): 1e308 is too large to fit",
+    ),
+    bad(
+        &["calibrate", "{scratch}/one-distance.csv", "-o", "{scratch}/out.toml"],
+        "the loading rows (lines 2 to 7) all have the distance 0.5: a fit needs distinct distances",
+    ),
 ];
 
 fn root() -> PathBuf {
@@ -166,6 +176,8 @@ fn scratch() -> PathBuf {
         ("nan-force.csv", format!("{header}0.1,1.0,1.0,loading,0\n0.2,NaN,2.0,loading,0\n")),
         ("no-header.csv", "0.1,1.0,1.0,loading,0\n".to_string()),
         ("bad-branch.csv", format!("{header}0.1,1.0,1.0,loading,0\n0.2,1.0,1.0,sideways,0\n")),
+        ("huge-force.csv", format!("{header}0.1,1.0,1.0,loading,0\n0.2,1e308,2.0,loading,0\n")),
+        ("one-distance.csv", format!("{header}{}", "0.5,1.0,1.0,loading,0\n".repeat(6))),
     ];
     for (name, text) in tables {
         std::fs::write(dir.join(name), text).unwrap();

@@ -192,6 +192,37 @@ fn an_earlier_run_is_replaced_only_with_overwrite() {
         outcome(&mut stiction(&["run", case, "--quiet", "--overwrite", "--out", foreign.to_str().unwrap()]));
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("holds no earlier run") && foreign.join("notes.txt").exists(), "{stderr}");
+    // an earlier run beside the user's own files: --overwrite refuses, naming them, and removes nothing
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    std::fs::create_dir_all(out.join("data")).unwrap();
+    std::fs::write(out.join("data").join("measured.csv"), "mine").unwrap();
+    let (code, stderr) = outcome(&mut stiction(&["run", case, "--quiet", "--overwrite", "--out", out_arg]));
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("notes.txt") && stderr.contains("data/measured.csv"), "{stderr}");
+    assert!(out.join("notes.txt").exists() && out.join("data/measured.csv").exists());
+    assert!(out.join("history.csv").exists() && summary(&out)["status"] == "completed", "the earlier run is kept");
+}
+
+/// A second run into a folder a running Stiction writes is refused with the holder named, with
+/// or without --overwrite, and the first run completes with its files; once it has ended the
+/// folder is free again.
+#[test]
+fn a_folder_in_use_is_refused_to_a_second_run() {
+    let out = scratch("in-use");
+    let first = start_quick_case(&out, 3, &["--set", "steps.1.end_time=1.3"]);
+    let other = "cases/validation/lame-sphere-axisym.toml";
+    for extra in [&[][..], &["--overwrite"][..]] {
+        let mut args = vec!["run", other, "--quiet", "--out", out.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let (code, stderr) = outcome(&mut stiction(&args));
+        assert_eq!(code, Some(2), "{stderr}");
+        assert!(stderr.contains(&format!("in use by a running Stiction (process {}", first.id())), "{stderr}");
+    }
+    let done = first.wait_with_output().unwrap();
+    assert_eq!(done.status.code(), Some(0), "{}", String::from_utf8_lossy(&done.stderr));
+    assert_eq!(summary(&out)["status"], "completed");
+    assert!(out.join("history.csv").exists() && out.join("rough-w6-quick.pvd").exists());
+    assert!(!out.join(".stiction-lock").exists(), "the lock goes with the run");
 }
 
 /// Builds a copy of the template law that panics whenever the surfaces overlap, and returns
@@ -273,3 +304,105 @@ fn a_panicking_plugin_is_reported_once_with_a_count_and_duplicate_law_names_are_
         "{stderr}"
     );
 }
+
+/// A checkpoint with a few changed bytes in its numbers (the displacements of the record) is
+/// refused with exit 2 and the file named, and the stopped run's files are left as they were:
+/// never resumed with other numbers.
+#[test]
+fn a_corrupted_checkpoint_is_refused_and_the_run_left_as_it_was() {
+    let out = scratch("corrupted-checkpoint");
+    let case = "cases/validation/hertz-axisym.toml";
+    let dir = out.to_str().unwrap();
+    let (code, err) = outcome(&mut stiction(&["run", case, "--out", dir, "--quiet", "--stop-after", "3"]));
+    assert_eq!(code, Some(130), "{err}");
+    let checkpoint = out.join("restart.bin");
+    let mut bytes = std::fs::read(&checkpoint).unwrap();
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    // the record follows the magic line, the version and the checksum; change 8 bytes in its middle
+    let middle = bytes.len() / 2;
+    for b in &mut bytes[middle..middle + 8] {
+        *b ^= 0x5a;
+    }
+    std::fs::write(&checkpoint, &bytes).unwrap();
+    let (code, err) = outcome(&mut stiction(&["run", case, "--out", dir, "--quiet", "--resume"]));
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("restart.bin") && err.contains("is corrupted"), "{err}");
+    assert_eq!(std::fs::read_to_string(out.join("history.csv")).unwrap(), history, "history.csv untouched");
+    assert_eq!(std::fs::read(&checkpoint).unwrap(), bytes, "the checkpoint is kept for inspection");
+}
+
+/// A failure found after the run started (an inverted element, met at the first assembly):
+/// exit 2 with the element named, and `summary.json` says "failed" with the same reason,
+/// never "running".
+#[test]
+fn a_failure_after_the_start_leaves_a_failed_summary_with_the_reason() {
+    let out = scratch("inverted-element");
+    let input = scratch("inverted-element-input");
+    std::fs::create_dir_all(&input).unwrap();
+    std::fs::write(input.join("inverted.msh"), INVERTED_MESH).unwrap();
+    std::fs::write(input.join("case.toml"), INVERTED_CASE).unwrap();
+    let case = input.join("case.toml");
+    let (code, stderr) =
+        outcome(&mut stiction(&["run", case.to_str().unwrap(), "--quiet", "--out", out.to_str().unwrap()]));
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("element 1 of set 'body' is inverted or degenerate"), "{stderr}");
+    let s = summary(&out);
+    assert_eq!(s["status"], "failed");
+    assert!(s["message"].as_str().unwrap().contains("inverted or degenerate"), "{s}");
+}
+
+/// Two triangles in the r-z plane, the second numbered clockwise (inverted).
+const INVERTED_MESH: &str = "$MeshFormat
+4.1 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+1 1 \"base\"
+2 2 \"body\"
+$EndPhysicalNames
+$Entities
+0 1 1 0
+1 0 0 0 1 0 0 1 1 0
+1 0 0 0 1 1 0 1 2 0
+$EndEntities
+$Nodes
+2 4 1 4
+1 1 0 2
+1
+2
+0 0 0
+1 0 0
+2 1 0 2
+3
+4
+1 1 0
+0 1 0
+$EndNodes
+$Elements
+2 3 1 3
+1 1 1 1
+1 1 2
+2 1 2 2
+2 1 2 3
+3 1 4 3
+$EndElements
+";
+
+const INVERTED_CASE: &str = "analysis = \"axisymmetric\"
+[mesh]
+file = \"inverted.msh\"
+[materials.steel]
+model = \"linear-elastic\"
+youngs_modulus = 200.0
+poissons_ratio = 0.3
+[[sections]]
+group = \"body\"
+material = \"steel\"
+[[boundary]]
+group = \"base\"
+type = \"displacement\"
+components = [\"z\"]
+value = 0.01
+[[steps]]
+end_time = 1.0
+";

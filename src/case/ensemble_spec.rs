@@ -4,15 +4,18 @@
 
 use super::LoadedCase;
 use crate::error::Result;
+use schemars::JsonSchema;
 use serde::Deserialize;
 
 /// The largest ensemble accepted (a guard against a typo such as `members = 10000000`).
 pub const MAX_MEMBERS: usize = 100_000;
 
-#[derive(Debug, Clone, Deserialize)]
+/// N realizations of the case with some keys varied, run by `stiction ensemble`.
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct EnsembleSpec {
     /// Number of realizations.
+    #[schemars(range(min = 1, max = 100000))]
     pub members: usize,
     /// Seed of the random draws of `uniform` and `normal` variations (default 1). Member i
     /// always gets the i-th draw, so a larger ensemble extends a smaller one.
@@ -35,7 +38,7 @@ fn default_seed() -> u64 {
 
 /// One varied case key and how its value is chosen for member i (exactly one of `start`,
 /// `values`, `uniform`, `normal`).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct VarySpec {
     /// Any case key, written as for --set (e.g. "interfaces.0.points.seed").
@@ -43,6 +46,7 @@ pub struct VarySpec {
     /// An integer sequence: member i gets start + i (layout seeds).
     pub start: Option<i64>,
     /// Explicit values, one per member (numbers, or strings such as calibration files).
+    #[schemars(with = "Option<Vec<serde_json::Value>>")]
     pub values: Option<Vec<toml::Value>>,
     /// Uniformly distributed in [low, high].
     pub uniform: Option<[f64; 2]>,

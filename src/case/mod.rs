@@ -1,15 +1,18 @@
 //! The case file: a TOML description of a problem. Unknown keys are rejected with their path;
-//! every default is stated here and in `stiction run --help`.
+//! every key's default, unit and range is declared here, once: [`reference`] generates the
+//! case-file reference and `stiction run --help`'s list of defaults from these declarations.
 
 mod base;
 pub mod ensemble_spec;
 pub mod overrides;
+pub mod reference;
 mod validate;
 pub use ensemble_spec::{EnsembleSpec, VarySpec};
 pub use validate::metres_per_length_unit;
 
 use crate::error::{Result, StictionError};
-use serde::Deserialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use stiction_core::nonlinear::NewtonSettings;
@@ -17,7 +20,7 @@ use stiction_core::nonlinear::damped_flow::FlowSettings;
 use stiction_core::path::Incrementation;
 
 /// A whole case.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Case {
     /// Name of the case (default: the file stem); output goes to `out/<name>/` by default.
@@ -59,24 +62,29 @@ pub struct Case {
 }
 
 /// The units of a case's numbers, e.g. length = "nm", force = "nN" (the Ru cases).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct UnitsSpec {
+    /// Length unit, e.g. "nm", "um", "mm", "m" (SI prefixes are read: areas, energies and
+    /// stresses in reports are named from it and `force`).
     pub length: String,
+    /// Force unit, e.g. "nN", "uN", "N".
     pub force: String,
 }
 
-#[derive(Debug, Clone, Deserialize)]
+/// One run per value of one case key.
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SweepSpec {
     /// Any case key, written as for --set (e.g. "amplitudes.cycle.value.1").
     pub key: String,
+    /// The values, one run each.
     pub values: Vec<f64>,
     /// Name of the swept quantity in folder names and plot legends (default: the key).
     pub label: Option<String>,
 }
 
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Analysis {
     #[default]
@@ -86,7 +94,7 @@ pub enum Analysis {
 }
 
 /// The mesh: a `.msh` file, or a `.geo` file meshed by gmsh (cached).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
     /// gmsh MSH 4.1 file, relative to the case file.
@@ -94,18 +102,26 @@ pub struct MeshSpec {
     /// gmsh `.geo` file, relative to the case file (meshed with `gmsh`, cached in `.stiction-cache/`
     /// next to the `.geo`).
     pub geo: Option<PathBuf>,
-    /// Element order for `.geo` meshing (default 2).
+    /// Element order for `.geo` meshing.
     #[serde(default = "default_order")]
+    #[schemars(range(min = 1, max = 2))]
+    #[schemars(extend("x-applies" = ".geo meshes"))]
     pub order: usize,
-    /// gmsh `-clscale` factor for `.geo` meshing (default 1).
+    /// gmsh `-clscale` factor for `.geo` meshing.
     #[serde(default = "one")]
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-applies" = ".geo meshes"))]
     pub size_factor: f64,
     /// Numbers passed to the `.geo` with `-setnumber`; each must be declared by the `.geo`'s
     /// `DefineConstant` and lie within its `Min`/`Max`.
     #[serde(default)]
+    #[schemars(extend("x-applies" = ".geo meshes"))]
     pub parameters: BTreeMap<String, f64>,
-    /// Longest gmsh may take to mesh the `.geo`, in seconds (default 600).
+    /// Longest gmsh may take to mesh the `.geo`, in seconds.
     #[serde(default = "default_mesh_time_limit")]
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "s (wall)"))]
+    #[schemars(extend("x-applies" = ".geo meshes"))]
     pub time_limit: f64,
 }
 
@@ -121,40 +137,57 @@ fn one() -> f64 {
 }
 
 /// A material. `model` selects the law; the other keys are its parameters.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
     /// "linear-elastic" or "j2-plasticity".
     pub model: String,
+    /// Young's modulus.
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "stress"))]
     pub youngs_modulus: f64,
+    /// Poisson's ratio.
+    #[schemars(extend("exclusiveMinimum" = -1.0, "exclusiveMaximum" = 0.5))]
     pub poissons_ratio: f64,
     /// J2: initial yield stress.
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "stress"))]
+    #[schemars(extend("x-applies" = "j2-plasticity"))]
     pub yield_stress: Option<f64>,
-    /// J2: linear isotropic hardening modulus (default 0).
+    /// J2: linear isotropic hardening modulus.
     #[serde(default)]
+    #[schemars(extend("x-unit" = "stress"))]
+    #[schemars(extend("x-applies" = "j2-plasticity"))]
     pub isotropic_hardening: f64,
-    /// J2: linear kinematic hardening modulus (default 0).
+    /// J2: linear kinematic hardening modulus.
     #[serde(default)]
+    #[schemars(extend("x-unit" = "stress"))]
+    #[schemars(extend("x-applies" = "j2-plasticity"))]
     pub kinematic_hardening: f64,
-    /// J2: tangent-only hardening modulus (default 0): stiffens the tangent of flowing points
+    /// J2: tangent-only hardening modulus: stiffens the tangent of flowing points
     /// along the flow direction without changing the stresses, for perfectly plastic necks at
     /// their limit load (Newton then converges linearly there).
     #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "stress"))]
+    #[schemars(extend("x-applies" = "j2-plasticity"))]
     pub tangent_hardening: f64,
 }
 
-#[derive(Debug, Clone, Deserialize)]
+/// A section: a volume group and its material.
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SectionSpec {
     /// Physical group (name or tag) of volume cells (3d) or surface cells (axisymmetric).
     pub group: String,
+    /// Name of a `[materials.<name>]` table.
     pub material: String,
     /// "standard" (default: tet10 4 points like C3D10) or "high".
     #[serde(default)]
     pub quadrature: QuadratureSpec,
 }
 
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum QuadratureSpec {
     #[default]
@@ -162,17 +195,23 @@ pub enum QuadratureSpec {
     High,
 }
 
-#[derive(Debug, Clone, Deserialize)]
+/// A piecewise-linear amplitude of pseudo-time, which boundary values, loads and approaches
+/// are multiplied by.
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AmplitudeSpec {
+    /// Pseudo-times, increasing.
+    #[schemars(extend("x-unit" = "pseudo-time"))]
     pub time: Vec<f64>,
+    /// Values at those times (as many as `time`); linear between them, constant beyond.
     pub value: Vec<f64>,
 }
 
 /// A boundary condition on the nodes of a physical group.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BoundarySpec {
+    /// Physical group (name or tag) of the nodes it holds.
     pub group: String,
     /// "fixed" (u = 0), "displacement" (u = value * amplitude(t)) or "symmetry" (u . n = 0 on a
     /// coordinate plane with normal `normal`).
@@ -181,31 +220,43 @@ pub struct BoundarySpec {
     /// Components: any of "x", "y", "z" ("r", "z" in axisymmetric models). Default: all.
     pub components: Option<Vec<String>>,
     /// Displacement value (type "displacement").
+    #[schemars(extend("x-unit" = "length"))]
+    #[schemars(extend("x-applies" = "type = \"displacement\""))]
     pub value: Option<f64>,
     /// Amplitude name (default "ramp").
     pub amplitude: Option<String>,
     /// Symmetry plane normal: "x", "y" or "z" (type "symmetry").
+    #[schemars(extend("x-applies" = "type = \"symmetry\""))]
     pub normal: Option<String>,
 }
 
 /// A distributed load on a boundary group.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSpec {
+    /// Physical group (name or tag) of boundary faces (3d) or lines (axisymmetric).
     pub group: String,
     /// "pressure" (value acts against the outward normal) or "traction" (vector per area).
     #[serde(rename = "type")]
     pub kind: String,
+    /// Pressure (type "pressure").
+    #[schemars(extend("x-unit" = "stress"))]
+    #[schemars(extend("x-applies" = "type = \"pressure\""))]
     pub value: Option<f64>,
+    /// Traction vector, force per area (type "traction").
+    #[schemars(extend("x-unit" = "stress"))]
+    #[schemars(extend("x-applies" = "type = \"traction\""))]
     pub vector: Option<Vec<f64>>,
+    /// Amplitude name (default "ramp").
     pub amplitude: Option<String>,
 }
 
 /// An interface. Type "rigid-flat": the surface group against a rigid plane that approaches
 /// the body along `normal` by `approach * amplitude(t)`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct InterfaceSpec {
+    /// Name of the interface in outputs (history.csv columns, file names) and in `until_separated`.
     pub name: String,
     /// "rigid-flat", or "cohesive" (zero-thickness cohesive elements on an interior surface).
     #[serde(rename = "type")]
@@ -213,24 +264,34 @@ pub struct InterfaceSpec {
     /// Surface group of the body (faces: triangles in 3d, lines in axisymmetric models).
     pub surface: String,
     /// Unit normal from the flat toward the body (default [0, 0, 1] in 3d, [0, 1] axisymmetric).
+    #[schemars(extend("x-applies" = "rigid-flat interfaces"))]
     pub normal: Option<Vec<f64>>,
     /// Approach of the flat toward the body: approach * amplitude(t) (positive presses; rigid
     /// flats only, default 0).
     #[serde(default)]
+    #[schemars(extend("x-unit" = "length"))]
+    #[schemars(extend("x-applies" = "rigid-flat interfaces"))]
     pub approach: f64,
     /// Cohesive: interior surfaces along which the mesh is split (default: `surface` only; add
     /// pre-cracked faces here to open them without cohesion).
+    #[schemars(extend("x-applies" = "cohesive interfaces"))]
     pub split: Option<Vec<String>>,
     /// Cohesive: the volume group whose cells get the duplicated nodes.
+    #[schemars(extend("x-applies" = "cohesive interfaces"))]
     pub side: Option<String>,
     /// Cohesive: elastic stiffness against tangential slip (the law is normal-only; default:
     /// the law's `penalty` choice, 100 E / h).
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "stress per length"))]
+    #[schemars(extend("x-applies" = "cohesive interfaces"))]
     pub shear_stiffness: Option<f64>,
     /// Amplitude name (default "ramp").
     pub amplitude: Option<String>,
     /// Gap between the flat and the closest point of the undeformed surface at approach 0
     /// (default 0: approach 0 is first touch).
     #[serde(default)]
+    #[schemars(extend("x-unit" = "length"))]
+    #[schemars(extend("x-applies" = "rigid-flat interfaces"))]
     pub initial_gap: f64,
     /// Law: a built-in name ("frictionless-contact", "lennard-jones"), a plugin's name found on
     /// the plugin search path, or a path to a plugin library.
@@ -248,11 +309,14 @@ pub struct InterfaceSpec {
     /// 0: none): adds -zeta |k_c| (g - g_c) / dt per point (resisting the change of gap), k_c the law's tangent at the last
     /// converged increment; its dissipated energy is reported as `viscous_dissipation`.
     #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "pseudo-time"))]
     pub viscosity: f64,
     /// Largest acceptable share of the viscous regularisation's dissipation in the gross work
     /// of the flat (integral of |force| |d approach|); above it the run reports a warning in
-    /// summary.json, on stderr and as a `viscous_share_exceeded` event (default 0.05).
+    /// summary.json, on stderr and as a `viscous_share_exceeded` event.
     #[serde(default = "default_max_viscous_share")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "maximum" = 1.0))]
     pub max_viscous_share: f64,
     /// Discrete points (e.g. asperities) instead of the whole surface; needs a force law.
     pub points: Option<PointsSpec>,
@@ -263,49 +327,76 @@ pub struct InterfaceSpec {
 
 /// The metal's electrical data for the contact resistance (the body and the flat are taken to
 /// be the same metal; see `stiction_interfaces::contact_resistance`).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ResistanceSpec {
     /// Bulk resistivity in ohm m (Ru: 7.1e-8).
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "ohm m"))]
     pub resistivity: f64,
     /// Electron mean free path, in the case's length unit (Ru: 6.59 nm).
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "length"))]
     pub mean_free_path: f64,
     /// Specific resistance of a film on each spot, in ohm m^2 (default 0: clean metal).
     #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "ohm m^2"))]
     pub film_specific_resistance: f64,
     /// The counter body's (the flat's) resistivity in ohm m (default: the same metal).
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "ohm m"))]
     pub counter_resistivity: Option<f64>,
     /// The counter body's electron mean free path, in the case's length unit (default: the
     /// same metal).
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "length"))]
     pub counter_mean_free_path: Option<f64>,
 }
 
 /// Discrete points on the interface surface: generated, or read from a file.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PointsSpec {
     /// CSV with header `x,y,height`: in-plane coordinates from the surface's lowest point along
     /// two directions normal to the flat, and the height toward the flat. Relative to the case.
     pub file: Option<PathBuf>,
     /// Points per unit area (generator).
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "1/length^2"))]
+    #[schemars(extend("x-applies" = "generated layouts"))]
     pub density: Option<f64>,
     /// Radius of the region around the lowest point, projected on the flat (generator).
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "length"))]
+    #[schemars(extend("x-applies" = "generated layouts"))]
     pub region_radius: Option<f64>,
     /// Minimum distance between points (generator, default 0).
     #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "length"))]
     pub min_spacing: f64,
     /// Height of the points toward the flat (generator; e.g. the asperity height).
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "length"))]
+    #[schemars(extend("x-applies" = "generated layouts"))]
     pub height: Option<f64>,
     /// Standard deviation of heights (generator, default 0: identical heights).
     #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "length"))]
+    #[schemars(extend("x-applies" = "generated layouts"))]
     pub height_std: f64,
     /// Random seed (generator, default 1).
     #[serde(default = "default_seed")]
+    #[schemars(extend("x-applies" = "generated layouts"))]
     pub seed: u64,
     /// Area of each point's footprint (an asperity's base): its force acts as a uniform
     /// traction over a disc of this area and its distance is the mean over the disc (default 0:
     /// a point force, as for springs).
     #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "length^2"))]
     pub footprint_area: f64,
     /// The footprint's own response below the mesh scale, in series with each point's law (for
     /// meshes coarser than the footprint; needs `footprint_area`): see
@@ -316,25 +407,31 @@ pub struct PointsSpec {
 /// The local correction of a footprint the mesh does not resolve: an elastic compliance in
 /// series with the law, and, only where the case declares one, a rigid-plastic slider that
 /// limits the force the continuum under the footprint carries.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FootprintCorrectionSpec {
     /// Length per force. Absent: computed per point, as the half-space compliance of the
     /// footprint's disc minus what the mesh gives it (an elastic solve of the body, once).
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "length/force"))]
     pub compliance: Option<f64>,
     /// Force at which the continuum under a footprint flows (opt-in; absent with
     /// `limit_pressure` absent: no limit, the footprint is elastic).
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "force"))]
     pub limit_force: Option<f64>,
     /// The same limit as a pressure over `footprint_area` (opt-in): a number, or
     /// "von-mises-disc", the limit pressure of a uniform pressure on a disc over a von Mises
     /// half-space, 2.99 Y (`cases/validation/disc-limit-axisym.toml`), Y the yield stress of
     /// the body's perfectly plastic material.
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "stress"))]
     pub limit_pressure: Option<LimitPressure>,
 }
 
 /// `points.footprint_correction.limit_pressure`: a value, or a named limit derived from the
 /// body's material.
-#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Deserialize, PartialEq, JsonSchema)]
 #[serde(untagged)]
 pub enum LimitPressure {
     Value(f64),
@@ -349,16 +446,25 @@ fn default_seed() -> u64 {
 }
 
 /// A step: pseudo-time runs from the end of the previous step to `end_time`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StepSpec {
+    /// Name of the step in messages.
     pub name: Option<String>,
+    /// Pseudo-time at the step's end (after the previous step's end).
+    #[schemars(extend("x-unit" = "pseudo-time"))]
     pub end_time: f64,
     /// First increment (default: a tenth of the step).
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "pseudo-time"))]
     pub initial_increment: Option<f64>,
     /// Smallest increment before the run gives up (default: 1e-6 of the step).
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "pseudo-time"))]
     pub min_increment: Option<f64>,
     /// Largest increment (default: the step).
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "pseudo-time"))]
     pub max_increment: Option<f64>,
     /// Write VTK every this many converged increments (default 1; 0 = only at the step end).
     #[serde(default = "one_usize")]
@@ -366,6 +472,7 @@ pub struct StepSpec {
     /// End the step (and the run, if it is the last) once this interface has had contact and
     /// has none left with its force below 1e-3 of the largest force magnitude so far, e.g. when
     /// every asperity has pulled off.
+    #[schemars(extend("x-applies" = "rigid-flat interfaces"))]
     pub until_separated: Option<String>,
 }
 
@@ -373,34 +480,40 @@ fn one_usize() -> usize {
     1
 }
 
-#[derive(Debug, Clone, Deserialize)]
+/// The nonlinear solver, the increment control and how unstable paths are crossed
+/// (docs/solver.md says when to change what).
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
-    /// Newton iterations per increment (default 25).
+    /// Nonlinear iterations (Newton or quasi-Newton) per increment.
     #[serde(default = "default_iterations")]
+    #[schemars(range(min = 1))]
     pub max_iterations: usize,
-    /// Relative residual tolerance (default 1e-8).
+    /// Relative residual tolerance.
     #[serde(default = "default_tol_r")]
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
     pub tol_residual: f64,
-    /// Relative displacement-correction tolerance (default 1e-6).
+    /// Relative displacement-correction tolerance.
     #[serde(default = "default_tol_u")]
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
     pub tol_displacement: f64,
-    /// Backtracking line search (default true).
+    /// Backtracking line search.
     #[serde(default = "default_line_search")]
     pub line_search: bool,
     /// An increment whose residual fell by less than 5% over its last 3 iterations is abandoned
-    /// (and cut) from this iteration on, instead of running to `max_iterations` (default 8;
-    /// 0: never).
+    /// (and cut) from this iteration on, instead of running to `max_iterations` (0: never).
     #[serde(default = "default_stagnation_iterations")]
     pub stagnation_iterations: usize,
-    /// Assembly threads; 0 = all cores (default 0).
+    /// Assembly threads; 0 = all cores.
     #[serde(default)]
     pub threads: usize,
-    /// Increment cut factor after a failure (default 0.25).
+    /// Increment cut factor after a failure.
     #[serde(default = "default_cut")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub cut_factor: f64,
-    /// Increment growth factor after an easy increment (default 1.5).
+    /// Increment growth factor after an easy increment.
     #[serde(default = "default_growth")]
+    #[schemars(range(min = 1.0))]
     pub growth_factor: f64,
     /// How to cross a limit point where the increment keeps failing: "none" (default: cut
     /// until the minimum increment, then snap to a stable state), "arc-length" (Crisfield's
@@ -429,6 +542,8 @@ pub struct SolverSpec {
     /// quasi-Newton iterations (residual assembly and solve), so its choices depend on the
     /// residuals only and a run is reproducible to the last digit for a given thread count.
     #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-applies" = "method = \"quasi-newton\""))]
     pub refactorization_cost_ratio: f64,
     /// Where an increment with no earlier rate to extrapolate (a run's first, the first after a
     /// load reversal) starts: "tangent" (default: the committed state moved along the tangent,
@@ -447,8 +562,10 @@ pub struct SolverSpec {
     /// makes Newton cycle.
     #[serde(default)]
     pub tangent: TangentSpec,
-    /// Consecutive cuts after which arc-length continuation takes over (default 2).
+    /// Consecutive cuts after which arc-length continuation takes over.
     #[serde(default = "default_arc_length_after_cuts")]
+    #[schemars(range(min = 1))]
+    #[schemars(extend("x-applies" = "continuation = \"arc-length\" or \"dissipation\""))]
     pub arc_length_after_cuts: usize,
     /// How a snap (a jump at fixed load, where the path has no nearby equilibrium) finds the
     /// state it reaches: "settle" (a descent from the committed state; the state of an
@@ -468,17 +585,19 @@ pub struct SolverSpec {
     /// steps; its path, and so the plastic work along it, differs).
     #[serde(default)]
     pub snap_damping: SnapDampingSpec,
-    /// The damped flow's local error per step relative to the step's move (default 0.03).
+    /// The damped flow's local error per step relative to the step's move.
     #[serde(default = "default_snap_tolerance")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub snap_tolerance: f64,
-    /// The damped flow's steps at most per snap (default 5000); then the run stops with the
+    /// The damped flow's steps at most per snap; then the run stops with the
     /// reason.
     #[serde(default = "default_snap_max_steps")]
+    #[schemars(range(min = 1))]
     pub snap_max_steps: usize,
 }
 
 /// How snaps are solved.
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum SnapSpec {
     #[default]
@@ -488,7 +607,7 @@ pub enum SnapSpec {
 }
 
 /// The damped flow's drag.
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum SnapDampingSpec {
     #[default]
@@ -505,7 +624,7 @@ fn default_snap_max_steps() -> usize {
 }
 
 /// Nonlinear solver.
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum MethodSpec {
     #[default]
@@ -514,7 +633,7 @@ pub enum MethodSpec {
 }
 
 /// Precision of the numeric factor.
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum PrecisionSpec {
     #[default]
@@ -523,7 +642,7 @@ pub enum PrecisionSpec {
 }
 
 /// The predictor of the increments with no earlier rate to extrapolate.
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum StartPredictorSpec {
     #[default]
@@ -532,7 +651,7 @@ pub enum StartPredictorSpec {
 }
 
 /// Which material tangent the solvers see.
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum TangentSpec {
     #[default]
@@ -542,7 +661,7 @@ pub enum TangentSpec {
 }
 
 /// Fill-reducing ordering.
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum OrderingSpec {
     #[default]
@@ -551,7 +670,7 @@ pub enum OrderingSpec {
 }
 
 /// Limit-point crossing method.
-#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, Deserialize, Serialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum ContinuationSpec {
     #[default]
@@ -610,49 +729,21 @@ fn default_growth() -> f64 {
     Incrementation::DEFAULT_GROWTH_FACTOR
 }
 
-/// The defaults of the case keys that have one, as `stiction run --help` lists them.
-pub fn defaults_help() -> String {
-    let n = NewtonSettings::default();
-    format!(
-        "Defaults (case file keys): analysis = \"3d\"; mesh.order = 2; mesh.size_factor = 1; mesh.time_limit = 600 s; \
-         sections[].quadrature = \"standard\" (tet10: 4 points); boundary amplitude = \"ramp\" \
-         (0 -> 1 over t in [0, 1]); steps[].initial_increment = step/10, min_increment = 1e-6 step, \
-         max_increment = step, output_every = 1; solver.max_iterations = {}, tol_residual = {:e}, \
-         tol_displacement = {:e}, line_search = {}, stagnation_iterations = {} (0: never), threads = 0 (all cores), cut_factor = {}, \
-         growth_factor = {}, continuation = \"none\" (or \"arc-length\", \"dissipation\"), arc_length_after_cuts = {}, \
-         method = \"quasi-newton\" (or \"newton\"), factor_precision = \"single\" (or \"double\"), ordering = \"nested-dissection\" (or \"amd\"), \
-         refactorization_cost_ratio = 0 (measured times), start_predictor = \"tangent\" (or \"none\"), \
-         tangent = \"switch-on-failure\" (or \"consistent\", \"stabilized\"), \
-         snap = \"auto\" (damped-flow for a path-dependent model, else settle with the damped flow where a descent fails; or \"settle\", \"damped-flow\"), snap_damping = \"mass\" (or \"stiffness\"), snap_tolerance = {}, snap_max_steps = {}; \
-         interfaces[].viscosity = 0, max_viscous_share = {}, quadrature_order = 0, initial_gap = 0; \
-         output.directory = out/<name>, output.vtk = true, output.checkpoint_minutes = 10; ensemble.seed = 1, threads_per_member = 0 (auto), \
-         concurrent_members = 0 (auto).",
-        n.max_iterations,
-        n.tol_residual,
-        n.tol_displacement,
-        n.line_search,
-        n.stagnation_iterations,
-        Incrementation::DEFAULT_CUT_FACTOR,
-        Incrementation::DEFAULT_GROWTH_FACTOR,
-        DEFAULT_ARC_LENGTH_AFTER_CUTS,
-        FlowSettings::default().tolerance,
-        FlowSettings::default().max_steps,
-        InterfaceSpec::default_max_viscous_share(),
-    )
-}
-
-#[derive(Debug, Clone, Deserialize)]
+/// Where and what a run writes, and how often it checkpoints.
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSpec {
     /// Output directory (default `out/<name>`, relative to the working directory).
     pub directory: Option<PathBuf>,
-    /// Write VTK files (default true).
+    /// Write VTK files.
     #[serde(default = "yes")]
     pub vtk: bool,
     /// Wall minutes between checkpoints (`restart.bin` in the output folder, to go on with
     /// `stiction run --resume`); 0 writes one at every commit. A failed or stopped run always
     /// writes one; a completed run removes it.
     #[serde(default = "default_checkpoint_minutes")]
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "min (wall)"))]
     pub checkpoint_minutes: f64,
 }
 

@@ -24,6 +24,18 @@ pub fn validate(case: &LoadedCase) -> Result<()> {
     if !(minutes.is_finite() && minutes >= 0.0) {
         return Err(case.error("output.checkpoint_minutes", format!("must be a finite number >= 0, got {minutes}")));
     }
+    for (i, dir) in case.case.plugin_path.iter().enumerate() {
+        let full = case.base_dir().join(dir);
+        if full.exists() && !full.is_dir() {
+            return Err(case.error(
+                format!("plugin_path[{i}]"),
+                format!(
+                    "'{}' is a file; a plugin search path names folders that hold plugin libraries",
+                    full.display()
+                ),
+            ));
+        }
+    }
     solver(case)?;
     steps(case)?;
     mesh(case)?;
@@ -165,6 +177,9 @@ fn interfaces(case: &LoadedCase) -> Result<()> {
         }
         if !(f.max_viscous_share > 0.0 && f.max_viscous_share <= 1.0) {
             return Err(case.error(key("max_viscous_share"), "must be a fraction in (0, 1]"));
+        }
+        if let Some(v) = f.shear_stiffness.filter(|v| !(v.is_finite() && *v >= 0.0)) {
+            return Err(case.error(key("shear_stiffness"), format!("must be a finite number >= 0, got {v}")));
         }
         for (k, v) in &f.parameters {
             finite(case, &format!("interfaces[{i}].parameters.{k}"), *v)?;

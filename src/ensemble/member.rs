@@ -3,6 +3,9 @@
 
 use super::plan::Member;
 use crate::error::StictionError;
+
+/// What a stopped member's message advises (instead of `stiction run`'s --resume).
+const AGAIN: &str = "; running the same `stiction ensemble` command again goes on with this member from its checkpoint";
 use crate::run::{RunOptions, run};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -85,7 +88,15 @@ pub fn run_member(context: &MemberContext, member: &Member, threads: usize) -> M
     })();
     let (status, error) = match result {
         Ok(()) => ("completed", None),
-        Err(e @ StictionError::Interrupted { .. }) => ("interrupted", Some(e.to_string())),
+        // `stiction ensemble` has no --resume: running it again goes on with a stopped member
+        Err(StictionError::Interrupted { time, out, resumable }) => {
+            let e = StictionError::Interrupted { time, out, resumable: false };
+            ("interrupted", Some(format!("{e}{}", if resumable { AGAIN } else { "" })))
+        }
+        Err(StictionError::RunFailed { time, message, out, resumable }) => {
+            let e = StictionError::RunFailed { time, message, out, resumable: false };
+            ("failed", Some(format!("{e}{}", if resumable { AGAIN } else { "" })))
+        }
         Err(e) => ("failed", Some(e.to_string())),
     };
     let outcome = MemberOutcome {

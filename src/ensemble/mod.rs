@@ -66,6 +66,8 @@ pub struct Prepared {
     /// The case's `[ensemble]` thread settings (0 = auto).
     pub threads_per_member: usize,
     pub concurrent_members: usize,
+    /// The lock on the output folder while this process runs the ensemble (rank 0's).
+    pub lock: Option<std::sync::Arc<crate::output_folder::FolderLock>>,
 }
 
 /// Loads the case, plans its members and validates every member's case. With `write`, checks
@@ -90,8 +92,10 @@ pub fn prepare(path: &Path, sets: &[String], options: &EnsembleOptions, write: b
     }
     let root =
         crate::run::output_directory(&base, &crate::run::RunOptions { out: options.out.clone(), ..Default::default() });
+    let mut lock = None;
     if write {
         check_folder(&root)?;
+        lock = Some(std::sync::Arc::new(crate::output_folder::lock(&root)?));
         let json = serde_json::to_string_pretty(&members).expect("plan serializes");
         let io = |source| StictionError::Core(stiction_core::CoreError::Write { path: root.clone(), source });
         std::fs::create_dir_all(&root).map_err(io)?;
@@ -115,6 +119,7 @@ pub fn prepare(path: &Path, sets: &[String], options: &EnsembleOptions, write: b
         },
         threads_per_member: options.threads_per_member.unwrap_or(spec.threads_per_member),
         concurrent_members: options.concurrent_members.unwrap_or(spec.concurrent_members),
+        lock,
     })
 }
 
@@ -124,7 +129,9 @@ fn check_folder(root: &Path) -> Result<()> {
     if root.exists() && !root.is_dir() {
         return refuse("is a file, not a folder; give another --out".into());
     }
-    let entries = std::fs::read_dir(root).map(|d| d.count()).unwrap_or(0);
+    let entries = std::fs::read_dir(root)
+        .map(|d| d.flatten().filter(|e| e.file_name() != crate::output_folder::LOCK_FILE).count())
+        .unwrap_or(0);
     if entries > 0 && !root.join(PLAN_FILE).exists() {
         return refuse(format!(
             "is not empty ({entries} entries) and holds no earlier ensemble ({PLAN_FILE}); give a new or empty folder \
@@ -134,15 +141,15 @@ fn check_folder(root: &Path) -> Result<()> {
     Ok(())
 }
 
-/// A line for a finished member.
-pub fn describe(root: &Path, o: &MemberOutcome) -> String {
+/// A line for a finished member: `done` of `total` members to run in this invocation have ended with this one.
+pub fn describe(root: &Path, o: &MemberOutcome, done: usize, total: usize) -> String {
     let summary: Option<serde_json::Value> = std::fs::read_to_string(root.join(&o.folder).join("summary.json"))
         .ok()
         .and_then(|t| serde_json::from_str(&t).ok());
     let wall =
         summary.as_ref().and_then(|s| s["wall_seconds"].as_f64()).map_or(String::new(), |w| format!(" in {w:.1} s"));
     let error = o.error.as_ref().map_or(String::new(), |e| format!(": {e}"));
-    format!("{} [{}]: {}{wall}{error}", o.folder, o.sets.join(", "), o.status)
+    format!("{} of {total}: {} [{}]: {}{wall}{error}", done, o.folder, o.sets.join(", "), o.status)
 }
 
 /// The ensemble's end: the earlier and new outcomes in member order, then the aggregate written
@@ -192,9 +199,11 @@ pub fn run_ensemble(path: &Path, sets: &[String], options: &EnsembleOptions) -> 
     announce(&prepared, &format!("{} at once, {} threads each", budget.concurrent, budget.threads));
     let root = prepared.root.clone();
     let quiet = options.quiet;
+    let (done, total) = (std::sync::atomic::AtomicUsize::new(0), prepared.todo.len());
     let report = move |o: &MemberOutcome| {
+        let done = done.fetch_add(1, Ordering::SeqCst) + 1;
         if !quiet || !o.completed() {
-            eprintln!("{}", describe(&root, o));
+            eprintln!("{}", describe(&root, o, done, total));
         }
     };
     let new = local::run_members(&prepared.todo, &prepared.context, budget, &report);

@@ -114,10 +114,11 @@ fn dispatch(prepared: &Prepared, size: i32, threads: usize, rank0_computes: bool
     let interrupted = || prepared.context.interrupt.as_ref().is_some_and(|f| f.load(Ordering::SeqCst));
     let next = || if interrupted() { None } else { queue.lock().expect("queue").pop_front() };
     let record = |o: MemberOutcome| {
+        let mut outcomes = outcomes.lock().expect("outcomes");
         if !quiet || !o.completed() {
-            eprintln!("{}", describe(&prepared.root, &o));
+            eprintln!("{}", describe(&prepared.root, &o, outcomes.len() + 1, prepared.todo.len()));
         }
-        outcomes.lock().expect("outcomes").push(o);
+        outcomes.push(o);
     };
     std::thread::scope(|scope| {
         scope.spawn(|| {

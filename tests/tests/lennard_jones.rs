@@ -100,9 +100,9 @@ fn strong_adhesion_pull_off_matches_greenwood_at_w_3() {
 /// w = 6 needs the shipped 1 nm contact mesh: the cohesive zone is ~1 nm wide, and on a 2 nm
 /// mesh each surface node zips into contact with a jump of its own. Loaded to 0.2 nm only and
 /// unloaded to -0.8 nm (past the jump-out at -0.59). A long run (30,658 dofs, 205 arc-length
-/// increments; 474 s on 2 cores sharing them with one other run, 2026-11-29), which would add a
-/// sixth to the default test run's time, so it is run by hand whenever the solver or the
-/// elements change (last: 2026-11-29, passed at +0.05% of Greenwood's pull-off):
+/// increments; about 8 minutes on 2 cores), which would add a sixth to the default test run's
+/// time, so it is run by hand whenever the solver or the elements change (CHANGELOG.md
+/// records the last run):
 /// `cargo test -p stiction-tests --test validation lennard_jones:: -- --ignored`.
 #[test]
 #[ignore = "long run (6 to 10 minutes on 2 cores); run by hand with --ignored after solver or element changes"]

@@ -6,17 +6,17 @@
 //! plastic and gives Newton a direction: the cycle completes, and two moduli a decade apart
 //! (4.1 and 41 GPa) give the same answer up to the snaps' paths: most tensile force within 3%,
 //! plastic dissipation within 1.5%, where a real hardening of 4.1 GPa raises the dissipation by
-//! 7% (976.1 against 913.1 aJ, measured 2026-11-27). The default tangent choice,
+//! 7% (976.1 against 913.1 aJ). The default tangent choice,
 //! `solver.tangent = "switch-on-failure"`, switches between the consistent tangent and the
 //! stabilized one (a tangent hardening of E/100) where attempts fail, and completes the same
 //! cycle with the same answer.
 //!
 //! The tolerances are the snaps' own spread: the same run (4.1 GPa) with the flow's tolerance
-//! `solver.snap_tolerance` at 0.03 (the default), 0.015 and 0.01, on the solver of 2026-11-28 and
-//! on the one before it (which priced a flow step's iterations to equilibrium's test), takes 5
+//! `solver.snap_tolerance` at 0.03 (the default), 0.015 and 0.01, on two solver versions (one
+//! priced a flow step's iterations to equilibrium's test, the other to the step's own), takes 5
 //! to 7 snaps and ends with most tensile forces from -1,314.8 to -1,343.7 nN (2.2%) and plastic
 //! dissipations from 910.0 to 917.9 aJ (0.9%): where the neck's bonded region stops growing
-//! depends on where the loading snaps land, within the flow's tolerance (measured 2026-11-28).
+//! depends on where the loading snaps land, within the flow's tolerance.
 
 use std::sync::OnceLock;
 use stiction::run::RunSummary;
@@ -75,8 +75,8 @@ fn a_perfectly_plastic_adhesive_neck_completes_its_cycle_whatever_the_tangent_ha
 /// With no tangent hardening and the default `solver.tangent`, the run switches to the
 /// stabilized tangent where Newton fails on the consistent one: it completes the cycle (at
 /// least one switch made) with the answer of the hardened tangent, within the snaps' spread
-/// (measured 2026-11-27 on one thread: -1310.3 against -1309.7 nN, 913.00 against 913.10 aJ, 23
-/// switches; 2026-11-28: -1310.5 against -1336.3 nN, 910.15 against 916.77 aJ, 24 switches).
+/// (measured on one thread with two solver versions: -1310.3 against -1309.7 nN, 913.00 against
+/// 913.10 aJ, 23 switches; -1310.5 against -1336.3 nN, 910.15 against 916.77 aJ, 24 switches).
 #[test]
 fn switching_to_the_stabilized_tangent_on_failure_completes_the_same_cycle() {
     let switched = small_sphere(&[], "neck-switch-on-failure");

@@ -117,6 +117,14 @@ fn the_shipped_default_meets_the_papers_global_statements_on_the_quick_mesh() {
     println!("w = 6: area vanishes after approach {approach:.4} nm");
     assert!(approach < 0.0 && last_contact + 1 < rows6.len(), "(7) last contact at approach {approach} nm");
     assert!(s6.interfaces[0].separated && s6.interfaces[0].final_n_contact == 0);
+    // this w = 6 run is the main job: README quotes its closing line
+    let readme = std::fs::read_to_string(workspace_root().join("README.md")).unwrap();
+    let quoted = format!(
+        "max force {:.2} uN at approach 2.000 nm; pull-off {:.2} uN",
+        s6.interfaces[0].max_force / 1000.0,
+        p6 / 1000.0
+    );
+    assert!(readme.contains(&quoted), "README.md should quote the main job's '{quoted}'");
     for (w, (s, _)) in [1, 3, 6].iter().zip(&runs) {
         let share = s.interfaces[0].point_share_of_approach_at_max_force;
         println!("w = {w}: most compressed asperity's share of the approach {share:.3}");

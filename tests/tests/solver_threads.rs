@@ -2,8 +2,8 @@
 //! before it in the process. The rough cases' build factorizes the body's elastic stiffness
 //! for the footprint correction on rayon's global pool, which that first use sizes to all
 //! cores; a run used to size the global pool itself at its start, which rayon allows only
-//! once, so on these cases `solver.threads = 1` was silently ignored (found 2026-11-29: the
-//! quick case's history.csv was byte for byte the same with 1 thread as with all). A run now
+//! once, so on these cases `solver.threads = 1` was silently ignored (the quick case's
+//! history.csv was byte for byte the same with 1 thread as with all). A run now
 //! gets a pool of its own, and summary.json says how many threads it had.
 
 use stiction_tests::run_case;

@@ -1,0 +1,179 @@
+//! The commands the manual shows run, so the docs cannot rot. Every line of a ```` ```sh ````
+//! block in README.md and docs/*.md is run as written, from the repository's root, with the
+//! `stiction` under test first on the PATH and `out/` pointed at a scratch folder, and must
+//! exit 0: `stiction ...` commands are run, `bash SCRIPT` lines are checked to exist and parse
+//! (`bash -n`: the scripts are long runs, exercised elsewhere), `export` lines are the reader's
+//! setup; a ```` ```text ```` synopsis line `stiction SUBCOMMAND ...` must name a subcommand
+//! that exists (`--help` exits 0). A block a test cannot run (a cluster script, ParaView, a user's own plugin) is marked
+//! ```` ```sh no-run ````. TOML blocks must parse; the tutorial's files are the ones README
+//! shows, and README quotes the numbers the tutorial's run prints (within the run-to-run spread).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The manual's pages: README and the top level of docs/ (design notes are records, not
+/// instructions).
+fn pages() -> Vec<PathBuf> {
+    let mut pages = vec![root().join("README.md")];
+    let mut docs: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "md"))
+        .collect();
+    docs.sort();
+    pages.extend(docs);
+    pages
+}
+
+/// (info string, text) of every fenced block of a Markdown page.
+fn blocks(text: &str) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    let mut open: Option<(String, String)> = None;
+    for line in text.lines() {
+        match (&mut open, line.strip_prefix("```")) {
+            (None, Some(info)) => open = Some((info.trim().to_string(), String::new())),
+            (Some(_), Some("")) => out.push(open.take().unwrap()),
+            (Some((_, body)), _) => {
+                body.push_str(line);
+                body.push('\n');
+            }
+            (None, None) => {}
+        }
+    }
+    out
+}
+
+/// A command line without its trailing `  # comment`.
+fn command(line: &str) -> &str {
+    match line.find(" #") {
+        Some(i) => line[..i].trim_end(),
+        None => line.trim_end(),
+    }
+}
+
+fn run(line: &str, scratch: &Path) -> std::process::Output {
+    let exe_dir = Path::new(env!("CARGO_BIN_EXE_stiction")).parent().unwrap().to_path_buf();
+    let path = std::env::join_paths(
+        std::iter::once(exe_dir).chain(std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default())),
+    )
+    .unwrap();
+    let line = line.replace(" out/", &format!(" {}/", scratch.display()));
+    Command::new("bash").arg("-c").arg(&line).current_dir(root()).env("PATH", path).output().unwrap()
+}
+
+#[test]
+fn every_command_the_manual_shows_runs() {
+    let scratch = root().join("target").join("test-out").join("docs-commands");
+    let _ = std::fs::remove_dir_all(&scratch);
+    std::fs::create_dir_all(&scratch).unwrap();
+    let mut failures = Vec::new();
+    let mut ran = 0;
+    for page in pages() {
+        let text = std::fs::read_to_string(&page).unwrap();
+        let name = page.strip_prefix(root()).unwrap().display().to_string();
+        for (info, body) in blocks(&text) {
+            if info == "toml" {
+                if let Err(e) = body.parse::<toml::Table>() {
+                    failures.push(format!("{name}: a TOML block does not parse: {e}\n{body}"));
+                }
+                continue;
+            }
+            if info == "text" {
+                // a synopsis: its subcommand must exist (`stiction plugin check LAW` -> `--help`)
+                for line in body.lines().map(command).filter(|l| l.starts_with("stiction ")) {
+                    let words: Vec<&str> = line
+                        .split_whitespace()
+                        .take_while(|w| w.chars().all(|c| c.is_ascii_lowercase() || c == '-') && !w.starts_with('-'))
+                        .collect();
+                    let help = run(&format!("{} --help", words.join(" ")), &scratch);
+                    ran += 1;
+                    if !help.status.success() {
+                        failures.push(format!("{name}: `{line}`: `{} --help` fails", words.join(" ")));
+                    }
+                }
+                continue;
+            }
+            if info != "sh" {
+                continue;
+            }
+            for line in body.lines().map(command).filter(|l| !l.is_empty() && !l.starts_with('#')) {
+                let first = line.split_whitespace().next().unwrap();
+                let checked = match first {
+                    "export" => continue,
+                    "bash" => {
+                        let script = line.split_whitespace().nth(1).unwrap();
+                        run(&format!("bash -n {script}"), &scratch)
+                    }
+                    "stiction" => run(line, &scratch),
+                    other => {
+                        failures.push(format!(
+                            "{name}: `{line}`: `{other}` is not a command this test runs; mark the block `sh no-run`"
+                        ));
+                        continue;
+                    }
+                };
+                ran += 1;
+                if !checked.status.success() {
+                    failures.push(format!(
+                        "{name}: `{line}` exited with {:?}:\n{}",
+                        checked.status.code(),
+                        String::from_utf8_lossy(&checked.stderr)
+                    ));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    assert!(ran >= 15, "only {ran} commands found in the manual");
+}
+
+/// README's tutorial: the files it shows are the ones in docs/tutorial/, its run prints the
+/// numbers README quotes, and its pull-off lies between the JKR (1.5 pi w R) and DMT (2 pi w R)
+/// limits, where Maugis's transition puts a sphere of Tabor parameter 0.59.
+#[test]
+fn the_readme_tutorial_is_the_shipped_one_and_pulls_off_between_jkr_and_dmt() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let tutorial = root().join("docs").join("tutorial");
+    let case = std::fs::read_to_string(tutorial.join("sphere.toml")).unwrap();
+    let shown: Vec<String> = blocks(&readme).into_iter().filter(|(i, _)| i == "toml").map(|(_, b)| b).collect();
+    assert_eq!(shown, vec![case], "README's case block must be docs/tutorial/sphere.toml");
+    let geo = std::fs::read_to_string(tutorial.join("sphere.geo")).unwrap();
+    let excerpt = blocks(&readme).into_iter().find(|(_, b)| b.contains("DefineConstant")).expect("the .geo excerpt").1;
+    for line in excerpt.lines().filter(|l| !l.starts_with("//") && *l != "...") {
+        let code = line.split("//").next().unwrap().trim_end();
+        assert!(geo.lines().any(|g| g.trim_end() == code), "README's .geo line `{code}` is not in sphere.geo");
+    }
+
+    let scratch = root().join("target").join("test-out").join("docs-tutorial");
+    let _ = std::fs::remove_dir_all(&scratch);
+    let out = run("stiction run docs/tutorial/sphere.toml --out out/tutorial --quiet", &scratch);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(scratch.join("tutorial").join("summary.json")).unwrap()).unwrap();
+    let flat = &summary["interfaces"][0];
+    // README quotes the closing line; the increments the quasi-Newton solver's measured costs
+    // choose move the pull-off by a fraction of a percent from run to run
+    let quote = readme.lines().find(|l| l.trim_start().starts_with("flat: max force")).expect("README's quoted line");
+    let number_after = |key: &str| -> f64 {
+        let rest = &quote[quote.find(key).unwrap() + key.len()..];
+        rest.split_whitespace().next().unwrap().parse().unwrap()
+    };
+    let (max_quoted, pull_off_quoted) = (number_after("max force "), number_after("pull-off "));
+    let (max_run, pull_off_run) =
+        (flat["max_force"].as_f64().unwrap() / 1000.0, flat["pull_off_force"].as_f64().unwrap() / 1000.0);
+    assert!((max_quoted / max_run - 1.0).abs() < 1e-3, "README quotes {max_quoted} uN, the run {max_run}");
+    assert!(
+        (pull_off_quoted / pull_off_run - 1.0).abs() < 0.01,
+        "README quotes {pull_off_quoted} uN, the run {pull_off_run}"
+    );
+    assert_eq!(flat["separated"], true);
+    let (w, radius) = (1.0, 200.0);
+    let ratio = -flat["pull_off_force"].as_f64().unwrap() / (std::f64::consts::PI * w * radius);
+    println!("tutorial pull-off: {ratio:.4} pi w R");
+    assert!((1.5..2.0).contains(&ratio), "pull-off {ratio} pi w R outside the JKR-DMT range");
+}
