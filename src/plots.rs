@@ -14,12 +14,19 @@ pub struct Curve {
     pub resistance: Option<Vec<f64>>,
 }
 
-/// Reads approach, force and contact_area from a `history.csv` (None if it has no interface).
+/// Reads approach, force and contact_area from a `history.csv` (None if it has no interface
+/// with a flat). With several interfaces (columns prefixed by the interface's name) the first
+/// one with a flat is read.
 pub fn read_history(path: &Path, label: &str) -> Option<Curve> {
     let text = std::fs::read_to_string(path).ok()?;
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next()?.split(',').collect();
-    let col = |n: &str| header.iter().position(|h| *h == n);
+    let prefix = if header.contains(&"approach") {
+        ""
+    } else {
+        header.iter().find_map(|h| h.strip_suffix("approach").filter(|p| p.ends_with('_')))?
+    };
+    let col = |n: &str| header.iter().position(|h| *h == format!("{prefix}{n}"));
     let (ia, i_f, iarea) = (col("approach")?, col("force")?, col("contact_area")?);
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').filter_map(|x| x.parse().ok()).collect::<Vec<f64>>())

@@ -94,6 +94,12 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
                     force(i.most_tensile_force, force_unit),
                     at(i.approach_at_most_tensile_force)
                 )
+            } else if i.contact_events == 0 && i.final_n_contact == 0 {
+                format!(
+                    "never in contact; most tensile force {} at {}",
+                    force(i.most_tensile_force, force_unit),
+                    at(i.approach_at_most_tensile_force)
+                )
             } else {
                 format!(
                     "not separated: {} points in contact, force {} at approach {} at the end; most tensile force {} at {}",

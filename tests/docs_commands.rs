@@ -177,3 +177,52 @@ fn the_readme_tutorial_is_the_shipped_one_and_pulls_off_between_jkr_and_dmt() {
     println!("tutorial pull-off: {ratio:.4} pi w R");
     assert!((1.5..2.0).contains(&ratio), "pull-off {ratio} pi w R outside the JKR-DMT range");
 }
+
+/// The tutorial composed with a second flat far from the sphere (50 nm): `history.csv` gives
+/// each interface its own columns, prefixed by its name, no two alike; the near flat's maximum
+/// force is the one-interface tutorial's (within the run-to-run spread of its increments); the
+/// far flat is reported as never in contact, and the plots show the first interface.
+#[test]
+fn two_interfaces_get_their_own_history_columns() {
+    let scratch = root().join("target").join("test-out").join("docs-two-interfaces");
+    let _ = std::fs::remove_dir_all(&scratch);
+    std::fs::create_dir_all(&scratch).unwrap();
+    let tutorial = root().join("docs").join("tutorial");
+    std::fs::copy(tutorial.join("sphere.geo"), scratch.join("sphere.geo")).unwrap();
+    let case = std::fs::read_to_string(tutorial.join("sphere.toml")).unwrap();
+    let far = "[[interfaces]]\nname = \"far\"\ntype = \"rigid-flat\"\nsurface = \"surface\"\napproach = 1.0\n\
+               amplitude = \"cycle\"\ninitial_gap = 50.0\nlaw = \"lennard-jones\"\n\
+               parameters = { w = 1.0, z0 = 0.169 }\n\n[[steps]]";
+    let two = case.replacen("[[steps]]", far, 1);
+    std::fs::write(scratch.join("two.toml"), two).unwrap();
+
+    let one = run("stiction run docs/tutorial/sphere.toml --out out/one --quiet", &scratch);
+    assert!(one.status.success(), "{}", String::from_utf8_lossy(&one.stderr));
+    let out = run(&format!("stiction run {}/two.toml --out out/two", scratch.display()), &scratch);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("far: max force") && stdout.contains("never in contact"), "{stdout}");
+
+    let history = std::fs::read_to_string(scratch.join("two").join("history.csv")).unwrap();
+    let header: Vec<&str> = history.lines().next().unwrap().split(',').collect();
+    let mut unique = header.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), header.len(), "repeated column names: {header:?}");
+    for column in ["flat_approach", "flat_force", "flat_contact_area", "far_approach", "far_force"] {
+        assert!(header.contains(&column), "no {column} in {header:?}");
+    }
+    assert!(!header.contains(&"force"), "{header:?}");
+    assert!(scratch.join("two").join("force_approach.png").exists());
+
+    let interfaces = |folder: &str| -> serde_json::Value {
+        let text = std::fs::read_to_string(scratch.join(folder).join("summary.json")).unwrap();
+        serde_json::from_str::<serde_json::Value>(&text).unwrap()["interfaces"].clone()
+    };
+    let (one, two) = (interfaces("one"), interfaces("two"));
+    let max = |v: &serde_json::Value| v["max_force"].as_f64().unwrap();
+    assert!((max(&two[0]) / max(&one[0]) - 1.0).abs() < 1e-3, "{} against {}", max(&two[0]), max(&one[0]));
+    let far_force = two[1]["most_tensile_force"].as_f64().unwrap();
+    assert!(far_force < 0.0 && -far_force < 1e-4 * max(&one[0]), "far flat's force {far_force}");
+    assert_eq!(two[1]["separated"], false);
+}

@@ -1,6 +1,8 @@
 //! `history.csv`: one row per committed state: step, increment, time, iterations, reactions
 //! per boundary group, mean displacements per loaded group, plastic dissipation, the snaps'
-//! dissipation so far, and each interface's observables.
+//! dissipation so far, and each interface's observables. With one interface its columns are
+//! named plainly (`approach`, `force`, ...); with several, each is prefixed by its interface's
+//! name (`flat_force`, `bond_force`), so that no two columns share a name.
 
 use super::{CommittedIncrement, Observer, ObserverState, RunSummary};
 use crate::element::Kinematics;
@@ -43,9 +45,14 @@ impl HistoryRecorder {
         }
         columns.push("plastic_dissipation".into());
         columns.push("snap_dissipation".into());
+        let reporting = model.contributions.iter().filter(|c| c.observables().is_some()).count();
         for c in &model.contributions {
             if let Some(o) = c.observables() {
-                columns.extend(o.columns().into_iter().map(|(name, _)| name.to_string()));
+                columns.extend(
+                    o.columns()
+                        .into_iter()
+                        .map(|(name, _)| if reporting > 1 { format!("{}_{name}", c.name()) } else { name.to_string() }),
+                );
             }
         }
         Self { writer: HistoryWriter::new(path, columns), reaction_groups, displacement_groups }
