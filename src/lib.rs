@@ -17,6 +17,7 @@ pub mod plots;
 pub mod plugin_check;
 pub mod progress;
 pub mod report;
+pub mod resources;
 pub mod resume;
 pub mod run;
 pub mod sweep;

@@ -204,6 +204,19 @@ fn solve_built(
     options: &RunOptions,
     checkpoint: Option<Checkpoint>,
 ) -> Result<RunSummary> {
+    // the factor's size is known from the symbolic analysis: refuse one that cannot fit before
+    // the output folder is made
+    let ordering = match case.case.solver.ordering {
+        OrderingSpec::NestedDissection => Ordering::NestedDissection,
+        OrderingSpec::Amd => Ordering::Amd,
+    };
+    let precision = match case.case.solver.factor_precision {
+        PrecisionSpec::Single => Precision::Single,
+        PrecisionSpec::Double => Precision::Double,
+    };
+    let mut linear = FaerCholesky::analyse_with_precision(built.model.pattern(), ordering, precision)?;
+    let bytes_per_entry = if precision == Precision::Single { 4 } else { 8 };
+    crate::build::size::check_factor_fits(case, &linear, built.model.free_dofs().len(), bytes_per_entry)?;
     let out = output_directory(case, options);
     let _lock = crate::output_folder::lock(&out)?;
     if checkpoint.is_none() {
@@ -240,15 +253,6 @@ fn solve_built(
         stop_after_increments: options.stop_after_increments,
         stop_after_flow_steps: options.stop_after_flow_steps,
     };
-    let ordering = match case.case.solver.ordering {
-        OrderingSpec::NestedDissection => Ordering::NestedDissection,
-        OrderingSpec::Amd => Ordering::Amd,
-    };
-    let precision = match case.case.solver.factor_precision {
-        PrecisionSpec::Single => Precision::Single,
-        PrecisionSpec::Double => Precision::Double,
-    };
-    let mut linear = FaerCholesky::analyse_with_precision(built.model.pattern(), ordering, precision)?;
     let mut nonlinear: Box<dyn NonlinearSolver> = match case.case.solver.method {
         MethodSpec::QuasiNewton => match case.case.solver.refactorization_cost_ratio {
             r if r > 0.0 => Box::new(QuasiNewtonSolver::with_cost_ratio(built.newton.clone(), r)),

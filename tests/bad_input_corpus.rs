@@ -97,6 +97,18 @@ const MESHES: &[Broken] = &[
         &["check", ROUGH, "--set", "mesh.parameters.h_contact=0.6", "--set", "mesh.time_limit=1.0"],
         "did not finish meshing",
     ),
+    bad(&["check", ROUGH, "--set", "mesh.memory_limit=0.0"], "key 'mesh.memory_limit'"),
+    bad(
+        &["check", HERTZ, "--set", "mesh.size_factor=0.01", "--set", "mesh.memory_limit=0.25"],
+        "key 'mesh.size_factor, mesh.parameters.",
+    ),
+    bad(&["check", HERTZ, "--set", "mesh.memory_limit=0.001"], "its model needs at least"),
+    bad(&["check", "{scratch}/large-msh/case.toml"], "key 'mesh.file': mesh file"),
+    // the model (~350 MiB) fits the estimate before assembly; its factor (~36 M entries) does not
+    bad(
+        &["run", "cases/validation/lj-sphere-3d.toml", "--set", "mesh.memory_limit=0.3", "--out", "{scratch}/no-room"],
+        "the sparse factor of this model",
+    ),
     bad(&["check", ROUGH, "--set", "mesh.geo=\"no-such.geo\""], "no-such.geo"),
     bad(&["check", "{scratch}/empty-geo/case.toml"], "is the .geo empty or truncated?"),
     bad(&["check", "{scratch}/truncated-geo/case.toml"], "truncated-geo/cantilever.geo', line"),
@@ -167,6 +179,11 @@ fn scratch() -> PathBuf {
         std::fs::write(dir.join(folder).join("cantilever.geo"), geo).unwrap();
         std::fs::write(dir.join(folder).join("case.toml"), &cantilever).unwrap();
     }
+    // only the size of a mesh file too large to read is looked at, before any of it is read
+    std::fs::create_dir_all(dir.join("large-msh")).unwrap();
+    std::fs::write(dir.join("large-msh").join("body.msh"), vec![b'0'; 1 << 20]).unwrap();
+    let large = cantilever.replace("geo = \"cantilever.geo\"", "file = \"body.msh\"\nmemory_limit = 0.001");
+    std::fs::write(dir.join("large-msh").join("case.toml"), large).unwrap();
     std::fs::create_dir_all(dir.join("syntax")).unwrap();
     std::fs::write(dir.join("syntax").join("case.toml"), "name = \"x\"\n[mesh\ngeo = \"a.geo\"\n").unwrap();
     std::fs::write(dir.join("not-a-library.so"), "not a shared library\n").unwrap();
@@ -247,6 +264,8 @@ fn numbers_out_of_range_name_their_key_in_check_and_run() {
 #[test]
 fn mesh_problems_name_the_key_or_the_geo() {
     check_corpus(MESHES);
+    // a run refused for its size leaves no output folder behind
+    assert!(!scratch_once().join("no-room").exists(), "a run refused before it started made its output folder");
 }
 
 #[test]

@@ -28,4 +28,23 @@ pub enum MeshError {
         "gmsh did not finish meshing '{path}' within {seconds} s ({settings}); a mesh size far too small for the geometry is the usual cause. Raise the limit with mesh.time_limit if the mesh is meant to be this fine"
     )]
     GmshTimeLimit { path: PathBuf, seconds: f64, settings: String },
+    #[error(
+        "gmsh used {} of memory after {seconds:.0} s meshing '{path}' ({settings}), more than its limit of {}. A mesh size far too small for the geometry is the usual cause",
+        gib(*used_bytes), gib(*limit_bytes)
+    )]
+    GmshMemoryLimit { path: PathBuf, seconds: f64, used_bytes: u64, limit_bytes: u64, settings: String },
+    #[error(
+        "mesh file '{path}' is {}; reading it needs about {}, more than the {} the run may count on",
+        gib(*file_bytes), gib(*needed_bytes), gib(*limit_bytes)
+    )]
+    TooLargeToRead { path: PathBuf, file_bytes: u64, needed_bytes: u64, limit_bytes: u64 },
+}
+
+/// Bytes as GiB (or MiB below one GiB), for messages.
+pub fn gib(bytes: u64) -> String {
+    if bytes >= 1 << 30 {
+        format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
+    } else {
+        format!("{:.0} MiB", bytes as f64 / f64::from(1u32 << 20))
+    }
 }

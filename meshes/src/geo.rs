@@ -2,7 +2,7 @@
 //! text, the options and the gmsh version, so an unchanged input is never meshed twice.
 
 use crate::error::MeshError;
-use crate::msh::read_msh;
+use crate::msh::read_msh_within;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -21,6 +21,38 @@ pub struct GeoOptions {
     /// `-setnumber NAME VALUE` parameters passed to the `.geo` script.
     pub parameters: Vec<(String, f64)>,
 }
+
+/// What a gmsh run may use, and whom it tells how it goes.
+pub struct GmshLimits<'a> {
+    /// gmsh is stopped after this many seconds.
+    pub time_limit_seconds: f64,
+    /// gmsh is stopped once its resident memory passes this many bytes (None: no limit).
+    pub memory_limit_bytes: Option<u64>,
+    /// Told every [`PROGRESS_INTERVAL`] of a meshing that takes longer than that.
+    pub progress: Option<&'a mut dyn FnMut(&GmshProgress)>,
+}
+
+impl GmshLimits<'_> {
+    /// A time limit alone: no memory limit, no progress.
+    pub fn time(time_limit_seconds: f64) -> Self {
+        GmshLimits { time_limit_seconds, memory_limit_bytes: None, progress: None }
+    }
+}
+
+/// How a gmsh run is going.
+#[derive(Debug, Clone)]
+pub struct GmshProgress {
+    pub geo: PathBuf,
+    pub elapsed_seconds: f64,
+    /// gmsh's resident memory (None where it cannot be read).
+    pub memory_bytes: Option<u64>,
+    /// The last line gmsh wrote (e.g. "Info    : Meshing surface 1 (Plane, Frontal-Delaunay)").
+    pub last_line: String,
+}
+
+/// How often a long meshing is reported, and gmsh's memory read.
+pub const PROGRESS_INTERVAL: Duration = Duration::from_secs(5);
+const MEMORY_INTERVAL: Duration = Duration::from_millis(250);
 
 fn gmsh_version() -> Option<String> {
     let out = Command::new("gmsh").arg("--version").output().ok()?;
@@ -45,12 +77,21 @@ fn cache_path(geo: &Path, text: &[u8], options: &GeoOptions, version: &str, cach
 
 /// Reads a mesh gmsh made from `geo` and checks it has cells of the model's dimension (an
 /// empty or truncated `.geo` gives gmsh nothing to mesh, and gmsh still exits 0).
-fn read_meshed(msh: &Path, geo: &Path, options: &GeoOptions, gmsh_output: &str) -> Result<Mesh, MeshError> {
+fn read_meshed(
+    msh: &Path,
+    geo: &Path,
+    options: &GeoOptions,
+    gmsh_output: &str,
+    memory_limit_bytes: Option<u64>,
+) -> Result<Mesh, MeshError> {
     let gmsh_said = gmsh_flagged(gmsh_output);
-    let mut mesh = read_msh(msh).map_err(|e| MeshError::GmshFailed {
-        path: geo.to_path_buf(),
-        status: "exit status: 0, but its mesh does not load: is the .geo empty or truncated?".into(),
-        output: gmsh_said.clone().unwrap_or_else(|| e.to_string()),
+    let mut mesh = read_msh_within(msh, memory_limit_bytes).map_err(|e| match e {
+        e @ MeshError::TooLargeToRead { .. } => e,
+        e => MeshError::GmshFailed {
+            path: geo.to_path_buf(),
+            status: "exit status: 0, but its mesh does not load: is the .geo empty or truncated?".into(),
+            output: gmsh_said.clone().unwrap_or_else(|| e.to_string()),
+        },
     })?;
     if !mesh.blocks.iter().any(|b| b.cell_type.dim() == options.dimension) {
         return Err(MeshError::GmshFailed {
@@ -68,19 +109,20 @@ fn read_meshed(msh: &Path, geo: &Path, options: &GeoOptions, gmsh_output: &str) 
 
 /// Meshes `geo` with gmsh, or takes the mesh from `cache_dir` (created if needed) when the same
 /// inputs were meshed before, and reads it. A mesh enters the cache only once it has loaded.
-/// gmsh runs at most `time_limit_seconds`.
+/// gmsh runs within `limits`.
 pub fn mesh_geo(
     geo: &Path,
     options: &GeoOptions,
     cache_dir: &Path,
-    time_limit_seconds: f64,
+    limits: &mut GmshLimits,
 ) -> Result<(Mesh, PathBuf), MeshError> {
     let text = std::fs::read(geo).map_err(|source| MeshError::Io { path: geo.to_path_buf(), source })?;
     let version = gmsh_version().ok_or_else(|| MeshError::GmshMissing { path: geo.to_path_buf() })?;
     let out = cache_path(geo, &text, options, &version, cache_dir);
     if out.exists() {
-        match read_meshed(&out, geo, options, "") {
+        match read_meshed(&out, geo, options, "", limits.memory_limit_bytes) {
             Ok(mesh) => return Ok((mesh, out)),
+            Err(e @ MeshError::TooLargeToRead { .. }) => return Err(e),
             // a cache entry that does not load (written by an older version) is meshed again
             Err(_) => {
                 let _ = std::fs::remove_file(&out);
@@ -94,7 +136,7 @@ pub fn mesh_geo(
     let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let tmp = out.with_extension(format!("partial-{}-{call}.msh", std::process::id()));
     let log = tmp.with_extension("log");
-    let result = run_gmsh(geo, options, &tmp, &log, time_limit_seconds);
+    let result = run_gmsh(geo, options, &tmp, &log, limits);
     let output = std::fs::read_to_string(&log).unwrap_or_default();
     let _ = std::fs::remove_file(&log);
     let loaded = match result {
@@ -105,7 +147,7 @@ pub fn mesh_geo(
         Ok(()) => {
             let errors: Vec<&str> = output.lines().filter(|l| l.starts_with("Error")).collect();
             if errors.is_empty() {
-                read_meshed(&tmp, geo, options, &output)
+                read_meshed(&tmp, geo, options, &output, limits.memory_limit_bytes)
             } else {
                 Err(MeshError::GmshFailed {
                     path: geo.to_path_buf(),
@@ -141,13 +183,13 @@ fn gmsh_messages(output: &str) -> String {
     })
 }
 
-/// Runs gmsh on `geo` into `msh`, its output into `log`, killing it after `time_limit_seconds`.
+/// Runs gmsh on `geo` into `msh`, its output into `log`, stopping it when it passes `limits`.
 fn run_gmsh(
     geo: &Path,
     options: &GeoOptions,
     msh: &Path,
     log: &Path,
-    time_limit_seconds: f64,
+    limits: &mut GmshLimits,
 ) -> Result<(), MeshError> {
     let io = |source| MeshError::Io { path: log.to_path_buf(), source };
     let log_file = std::fs::File::create(log).map_err(io)?;
@@ -167,20 +209,64 @@ fn run_gmsh(
     }
     cmd.arg("-o").arg(msh).stdin(Stdio::null()).stdout(log_file.try_clone().map_err(io)?).stderr(log_file);
     let mut child = cmd.spawn().map_err(|_| MeshError::GmshMissing { path: geo.to_path_buf() })?;
+    let pid = sysinfo::Pid::from_u32(child.id());
+    let mut system = sysinfo::System::new();
     let start = Instant::now();
+    let (mut memory_read, mut reported) = (start, start);
+    let mut peak_memory: Option<u64> = None;
+    let stop = |child: &mut std::process::Child| {
+        let _ = child.kill();
+        let _ = child.wait();
+        let _ = std::fs::remove_file(msh);
+    };
+    let settings = || {
+        let mut keys = vec![format!("size_factor = {}", options.size_factor)];
+        keys.extend(options.parameters.iter().map(|(k, v)| format!("{k} = {v}")));
+        keys.join(", ")
+    };
     let status = loop {
         if let Some(status) = child.try_wait().map_err(io)? {
             break status;
         }
-        if start.elapsed().as_secs_f64() > time_limit_seconds {
-            let _ = child.kill();
-            let _ = child.wait();
-            let _ = std::fs::remove_file(msh);
-            let parameters: Vec<String> = options.parameters.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+        let elapsed = start.elapsed();
+        if elapsed.as_secs_f64() > limits.time_limit_seconds {
+            stop(&mut child);
             return Err(MeshError::GmshTimeLimit {
                 path: geo.to_path_buf(),
-                seconds: time_limit_seconds,
-                settings: format!("size_factor = {}, {}", options.size_factor, parameters.join(", ")),
+                seconds: limits.time_limit_seconds,
+                settings: settings(),
+            });
+        }
+        if memory_read.elapsed() >= MEMORY_INTERVAL {
+            memory_read = Instant::now();
+            system.refresh_processes_specifics(
+                sysinfo::ProcessesToUpdate::Some(&[pid]),
+                true,
+                sysinfo::ProcessRefreshKind::nothing().with_memory(),
+            );
+            peak_memory = system.process(pid).map(|p| p.memory()).or(peak_memory);
+            if let (Some(used), Some(limit)) = (peak_memory, limits.memory_limit_bytes)
+                && used > limit
+            {
+                stop(&mut child);
+                return Err(MeshError::GmshMemoryLimit {
+                    path: geo.to_path_buf(),
+                    seconds: elapsed.as_secs_f64(),
+                    used_bytes: used,
+                    limit_bytes: limit,
+                    settings: settings(),
+                });
+            }
+        }
+        if let Some(progress) = limits.progress.as_mut()
+            && reported.elapsed() >= PROGRESS_INTERVAL
+        {
+            reported = Instant::now();
+            progress(&GmshProgress {
+                geo: geo.to_path_buf(),
+                elapsed_seconds: elapsed.as_secs_f64(),
+                memory_bytes: peak_memory,
+                last_line: last_line(log),
             });
         }
         std::thread::sleep(Duration::from_millis(20));
@@ -194,4 +280,16 @@ fn run_gmsh(
         });
     }
     Ok(())
+}
+
+/// The last non-empty line of a (growing) log file: read from its last few kilobytes.
+fn last_line(log: &Path) -> String {
+    use std::io::{Read, Seek, SeekFrom};
+    let Ok(mut file) = std::fs::File::open(log) else { return String::new() };
+    let len = file.metadata().map(|m| m.len()).unwrap_or(0);
+    let _ = file.seek(SeekFrom::Start(len.saturating_sub(4096)));
+    let mut tail = Vec::new();
+    let _ = file.read_to_end(&mut tail);
+    let text = String::from_utf8_lossy(&tail);
+    text.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("").trim().to_string()
 }

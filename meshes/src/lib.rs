@@ -10,6 +10,6 @@ pub mod msh;
 pub mod physical_names;
 
 pub use error::MeshError;
-pub use geo::{DEFAULT_TIME_LIMIT_SECONDS, GeoOptions, mesh_geo};
+pub use geo::{DEFAULT_TIME_LIMIT_SECONDS, GeoOptions, GmshLimits, GmshProgress, PROGRESS_INTERVAL, mesh_geo};
 pub use geo_parameters::{GeoParameter, declared_parameters};
-pub use msh::read_msh;
+pub use msh::{READ_MEMORY_PER_FILE_BYTE, read_msh, read_msh_within};

@@ -37,6 +37,28 @@ fn format_version(bytes: &[u8]) -> Option<String> {
 
 /// Reads a gmsh MSH 4.1 file.
 pub fn read_msh(path: &Path) -> Result<Mesh, MeshError> {
+    read_msh_within(path, None)
+}
+
+/// Reading a mesh holds about this many times its file's size in memory at once (the file's
+/// bytes, mshio's parsed sections and the mesh).
+pub const READ_MEMORY_PER_FILE_BYTE: u64 = 3;
+
+/// [`read_msh`], refusing a file whose reading would need more than `memory_limit_bytes`
+/// ([`READ_MEMORY_PER_FILE_BYTE`] times its size) before reading any of it.
+pub fn read_msh_within(path: &Path, memory_limit_bytes: Option<u64>) -> Result<Mesh, MeshError> {
+    if let Some(limit) = memory_limit_bytes {
+        let len = std::fs::metadata(path).map_err(|source| MeshError::Io { path: path.to_path_buf(), source })?.len();
+        let needed = len.saturating_mul(READ_MEMORY_PER_FILE_BYTE);
+        if needed > limit {
+            return Err(MeshError::TooLargeToRead {
+                path: path.to_path_buf(),
+                file_bytes: len,
+                needed_bytes: needed,
+                limit_bytes: limit,
+            });
+        }
+    }
     let bytes = std::fs::read(path).map_err(|source| MeshError::Io { path: path.to_path_buf(), source })?;
     match format_version(&bytes) {
         None => {

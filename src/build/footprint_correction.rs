@@ -67,6 +67,7 @@ impl ElasticFlexibility {
         model.apply_time(0.0);
         model.assemble(true).map_err(failed)?;
         let mut solver = FaerCholesky::analyse(model.pattern()).map_err(failed)?;
+        super::size::check_factor_fits(case, &solver, model.free_dofs().len(), 8)?;
         solver.factorize(model.pattern(), &model.tangent_values).map_err(|e| {
             failed(stiction_core::CoreError::Invalid(format!(
                 "{e}: is the body held by its boundary conditions without the interfaces?"

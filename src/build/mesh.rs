@@ -5,12 +5,17 @@ use crate::case::{Analysis, LoadedCase};
 use crate::error::Result;
 use std::path::{Path, PathBuf};
 use stiction_core::mesh::Mesh;
-use stiction_meshes::{GeoOptions, declared_parameters, mesh_geo, read_msh};
+use stiction_meshes::{GeoOptions, error::gib};
+use stiction_meshes::{GmshLimits, GmshProgress, MeshError, declared_parameters, mesh_geo, read_msh_within};
 
-/// Reads (or meshes) the case's mesh.
+/// Reads (or meshes) the case's mesh. gmsh is stopped when it needs more than a third of the
+/// memory the run may count on ([`crate::case::MeshSpec::memory_budget`], [`gmsh_limit`]) or
+/// takes longer than `mesh.time_limit`, and reports every few seconds of a long meshing on
+/// stderr; a mesh file too large to read is refused before it is read. Each refusal names the keys that set the mesh's size.
 pub fn load_mesh(case: &LoadedCase) -> Result<(Mesh, PathBuf)> {
     let spec = &case.case.mesh;
     let base = case.base_dir();
+    let memory = spec.memory_budget();
     let path = match (&spec.file, &spec.geo) {
         (Some(file), None) => base.join(file),
         (None, Some(geo)) => {
@@ -23,13 +28,76 @@ pub fn load_mesh(case: &LoadedCase) -> Result<(Mesh, PathBuf)> {
                 parameters: spec.parameters.iter().map(|(k, v)| (k.clone(), *v)).collect(),
             };
             let cache = geo.parent().unwrap_or(base).join(".stiction-cache");
-            return Ok(mesh_geo(&geo, &options, &cache, spec.time_limit)?);
+            let mut report = |p: &GmshProgress| {
+                let memory = p.memory_bytes.map_or(String::new(), |m| format!(", {}", gib(m)));
+                eprintln!(
+                    "meshing '{}' with gmsh: {:.0} s{memory}; {}",
+                    p.geo.display(),
+                    p.elapsed_seconds,
+                    p.last_line
+                );
+            };
+            let mut limits = GmshLimits {
+                time_limit_seconds: spec.time_limit,
+                memory_limit_bytes: memory.map(gmsh_limit),
+                progress: Some(&mut report),
+            };
+            return mesh_geo(&geo, &options, &cache, &mut limits).map_err(|e| size_error(case, e));
         }
         _ => {
             return Err(case.error("mesh", "give exactly one of 'file' (a .msh) or 'geo' (a .geo meshed by gmsh)"));
         }
     };
-    Ok((read_msh(&path)?, path))
+    let mesh = read_msh_within(&path, memory).map_err(|e| match e {
+        e @ MeshError::TooLargeToRead { .. } => case.error("mesh.file", format!("{e}{}", declared_limit(case))),
+        e => e.into(),
+    })?;
+    Ok((mesh, path))
+}
+
+/// gmsh's resident memory before it holds any mesh, in bytes (measured: ~76 MB).
+const GMSH_BASE_BYTES: u64 = 100 << 20;
+/// gmsh needs ~0.38 KB per node of the quadratic mesh it makes (measured on the shipped
+/// axisymmetric and 3D hemispheres), the model built from that mesh at least 1.1 KB per node
+/// ([`super::size`]; 2.2 to 8.3 KB measured) before its factor. A gmsh that passes a third of
+/// the budget is making a mesh whose model cannot fit, and is stopped there rather than at the
+/// whole budget.
+const GMSH_SHARE_OF_BUDGET: u64 = 3;
+
+/// The memory gmsh may use for a run that may count on `budget` bytes.
+fn gmsh_limit(budget: u64) -> u64 {
+    GMSH_BASE_BYTES + budget / GMSH_SHARE_OF_BUDGET
+}
+
+/// The case keys that set the size of a `.geo` mesh: `mesh.size_factor` and the mesh
+/// parameters the case gives.
+pub(crate) fn size_keys(case: &LoadedCase) -> String {
+    let mut keys = vec!["mesh.size_factor".to_string()];
+    keys.extend(case.case.mesh.parameters.keys().map(|k| format!("mesh.parameters.{k}")));
+    keys.join(", ")
+}
+
+/// " (mesh.memory_limit = 2 GiB)" when the case declares the limit a size error is against.
+pub(crate) fn declared_limit(case: &LoadedCase) -> String {
+    case.case.mesh.memory_limit.map_or(String::new(), |g| format!(" (mesh.memory_limit = {g} GiB)"))
+}
+
+/// A meshing stopped for its size or time, as an error naming the keys that set the size.
+fn size_error(case: &LoadedCase, e: MeshError) -> crate::error::StictionError {
+    match e {
+        MeshError::GmshMemoryLimit { .. } => case.error(
+            size_keys(case),
+            format!(
+                "{e}. gmsh may use a third of the {} the run may count on{}, as the model of a mesh needs at least \
+                 three times the memory gmsh takes to make it",
+                case.case.mesh.memory_budget().map_or("memory".into(), gib),
+                declared_limit(case)
+            ),
+        ),
+        MeshError::TooLargeToRead { .. } => case.error(size_keys(case), format!("{e}{}", declared_limit(case))),
+        MeshError::GmshTimeLimit { .. } => case.error(size_keys(case), e.to_string()),
+        e => e.into(),
+    }
 }
 
 /// Each of the case's mesh parameters is one the `.geo` declares (gmsh would ignore any other

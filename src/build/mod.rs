@@ -1,7 +1,7 @@
 //! Turns a case into a core model, one concern per file: the mesh ([`mesh`]), materials and
 //! sections ([`sections`]), amplitudes, boundary conditions ([`boundaries`]) and distributed
 //! loads ([`loads`]), interfaces and point layouts ([`interfaces`], [`points`]), and the steps
-//! ([`steps`]). Each reports errors naming the case key.
+//! ([`steps`]), and whether the model fits in memory ([`size`]). Each reports errors naming the case key.
 
 mod amplitudes;
 pub mod boundaries;
@@ -11,6 +11,7 @@ pub mod loads;
 pub mod mesh;
 pub mod points;
 pub mod sections;
+pub mod size;
 pub mod steps;
 
 pub use mesh::load_mesh;
@@ -61,6 +62,7 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
     if kin == Kinematics::Axisymmetric {
         mesh::check_axisymmetric(case, &mesh)?;
     }
+    size::check_model_fits(case, &mesh)?;
     let (mesh, splits) = interfaces::split_for_cohesive(case, mesh)?;
     let mesh = Arc::new(mesh);
     let mut model = Model::new(mesh.clone(), kin);

@@ -123,6 +123,31 @@ pub struct MeshSpec {
     #[schemars(extend("x-unit" = "s (wall)"))]
     #[schemars(extend("x-applies" = ".geo meshes"))]
     pub time_limit: f64,
+    /// Most memory the run may count on, in GiB: gmsh is stopped when it passes a third of it
+    /// (the model of a mesh needs at least three times what gmsh takes to make it), and a mesh
+    /// file, a model or a sparse factor estimated to need more is refused before it is read,
+    /// assembled or factored. By default: the memory the machine has available when the run
+    /// starts. A smaller value keeps room for other work (e.g. ensemble members run side by
+    /// side).
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    #[schemars(extend("x-unit" = "GiB"))]
+    pub memory_limit: Option<f64>,
+}
+
+impl MeshSpec {
+    /// The memory a run may count on, in bytes: `memory_limit`, or what the machine has
+    /// available now, whichever is smaller (None when neither is known).
+    pub fn memory_budget(&self) -> Option<u64> {
+        match (self.memory_limit_bytes(), crate::resources::available_memory()) {
+            (Some(d), Some(a)) => Some(d.min(a)),
+            (d, a) => d.or(a),
+        }
+    }
+
+    /// `memory_limit` in bytes.
+    pub fn memory_limit_bytes(&self) -> Option<u64> {
+        self.memory_limit.map(|g| (g * f64::from(1u32 << 30)) as u64)
+    }
 }
 
 fn default_mesh_time_limit() -> f64 {

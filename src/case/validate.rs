@@ -158,6 +158,9 @@ fn mesh(case: &LoadedCase) -> Result<()> {
     let m = &case.case.mesh;
     positive(case, "mesh.size_factor", m.size_factor)?;
     positive(case, "mesh.time_limit", m.time_limit)?;
+    if let Some(limit) = m.memory_limit {
+        positive(case, "mesh.memory_limit", limit)?;
+    }
     if m.geo.is_some() && !(m.order == 1 || m.order == 2) {
         return Err(case.error("mesh.order", format!("must be 1 or 2, got {}", m.order)));
     }

@@ -2,7 +2,7 @@
 //! output (an interrupted run keeps every converged increment).
 
 use std::process::Command;
-use stiction_meshes::{DEFAULT_TIME_LIMIT_SECONDS, GeoOptions, mesh_geo, read_msh};
+use stiction_meshes::{DEFAULT_TIME_LIMIT_SECONDS, GeoOptions, GmshLimits, mesh_geo, read_msh};
 use stiction_tests::{claim_output_dir, workspace_root};
 
 fn scratch(name: &str) -> std::path::PathBuf {
@@ -17,10 +17,10 @@ fn ascii_and_binary_msh41_give_the_same_mesh_and_geo_meshing_is_cached() {
     let dir = scratch("msh-formats");
     let geo = workspace_root().join("cases/validation/cantilever.geo");
     let opts = GeoOptions { dimension: 3, order: 2, size_factor: 2.0, parameters: vec![] };
-    let (_, cached) = mesh_geo(&geo, &opts, &dir, DEFAULT_TIME_LIMIT_SECONDS).unwrap();
+    let (_, cached) = mesh_geo(&geo, &opts, &dir, &mut GmshLimits::time(DEFAULT_TIME_LIMIT_SECONDS)).unwrap();
     let stamp = std::fs::metadata(&cached).unwrap().modified().unwrap();
     assert_eq!(
-        mesh_geo(&geo, &opts, &dir, DEFAULT_TIME_LIMIT_SECONDS).unwrap().1,
+        mesh_geo(&geo, &opts, &dir, &mut GmshLimits::time(DEFAULT_TIME_LIMIT_SECONDS)).unwrap().1,
         cached,
         "same inputs, same cache file"
     );

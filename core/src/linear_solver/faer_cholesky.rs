@@ -40,7 +40,7 @@ struct Numeric<T> {
     kind: Option<FactorKind>,
 }
 
-impl<T: faer::traits::ComplexField + Copy> Numeric<T> {
+impl<T: faer::traits::ComplexField + Copy + Default> Numeric<T> {
     fn factorize(
         &mut self,
         symbolic: &SymbolicCholesky<usize>,
@@ -48,6 +48,11 @@ impl<T: faer::traits::ComplexField + Copy> Numeric<T> {
         par: Par,
         workspace: &mut MemBuffer,
     ) -> Result<FactorKind> {
+        // allocated at the first factorization, so that the symbolic analysis tells the
+        // factor's size before any of its memory is taken
+        if self.values.len() != symbolic.len_val() {
+            self.values = zeroed(symbolic.len_val())?;
+        }
         let stack = MemStack::new(workspace);
         let llt = symbolic.factorize_numeric_llt(
             &mut self.values,
@@ -124,6 +129,21 @@ enum Factor {
     },
 }
 
+/// `len` zeros, or an error saying how much memory the factor needed where the allocation
+/// fails (an abort otherwise). Where the system overcommits, the allocation may succeed and the
+/// process be stopped when the memory is touched: the callers' size checks come first.
+fn zeroed<T: Clone + Default>(len: usize) -> Result<Vec<T>> {
+    let mut values = Vec::new();
+    values.try_reserve_exact(len).map_err(|_| {
+        CoreError::Factorization(format!(
+            "out of memory for the sparse factor: {len} entries ({:.1} GiB)",
+            (len * std::mem::size_of::<T>()) as f64 / f64::from(1u32 << 30)
+        ))
+    })?;
+    values.resize(len, T::default());
+    Ok(values)
+}
+
 /// A reusable sparse symmetric direct solver for one sparsity pattern.
 pub struct FaerCholesky {
     symbolic: SymbolicCholesky<usize>,
@@ -165,12 +185,11 @@ impl FaerCholesky {
         let workspace = MemBuffer::try_new(req)
             .map_err(|_| CoreError::Factorization("out of memory for the factorization workspace".into()))?;
         let factor = match precision {
-            Precision::Double => Factor::Double {
-                numeric: Numeric { values: vec![0.0; symbolic.len_val()], kind: None },
-                matrix: Vec::new(),
-            },
+            Precision::Double => {
+                Factor::Double { numeric: Numeric { values: Vec::new(), kind: None }, matrix: Vec::new() }
+            }
             Precision::Single => Factor::Single {
-                numeric: Numeric { values: vec![0.0; symbolic.len_val()], kind: None },
+                numeric: Numeric { values: Vec::new(), kind: None },
                 matrix: Vec::new(),
                 matrix_f32: Vec::new(),
                 pattern: pattern.clone(),
@@ -260,7 +279,6 @@ fn factorize_in_double(
     par: Par,
     workspace: &mut MemBuffer,
 ) -> Result<FactorKind> {
-    fallback.values.resize(symbolic.len_val(), 0.0);
     let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
     fallback.factorize(symbolic, SparseColMatRef::new(sym, matrix), par, workspace)
 }

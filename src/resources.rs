@@ -1,0 +1,28 @@
+//! What this machine can give a run: the memory available now (the operating system's
+//! "available" figure, or a container's limit where that is smaller). The size checks before
+//! meshing, reading and factoring a mesh ([`crate::build::mesh`], [`crate::run`]) compare
+//! against it, so that a model too large for the machine is refused with the key that made it
+//! so instead of ending in an allocation failure.
+
+/// Bytes of memory available to this process now (None where the system does not say).
+pub fn available_memory() -> Option<u64> {
+    let mut system = sysinfo::System::new();
+    system.refresh_memory();
+    let available = system.available_memory();
+    let limited = system.cgroup_limits().map_or(available, |c| available.min(c.free_memory));
+    (limited > 0).then_some(limited)
+}
+
+pub use stiction_meshes::error::gib;
+
+/// Bytes this process holds in memory now (its resident set; None where it cannot be read).
+pub fn own_memory() -> Option<u64> {
+    let pid = sysinfo::get_current_pid().ok()?;
+    let mut system = sysinfo::System::new();
+    system.refresh_processes_specifics(
+        sysinfo::ProcessesToUpdate::Some(&[pid]),
+        true,
+        sysinfo::ProcessRefreshKind::nothing().with_memory(),
+    );
+    system.process(pid).map(|p| p.memory())
+}
