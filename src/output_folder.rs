@@ -1,8 +1,9 @@
 //! The output folder of a run: never overwritten silently, never shared by two runs at once.
 //!
 //! A run goes into a new or empty folder. With `--overwrite` it may replace an earlier
-//! Stiction run (a folder holding `summary.json`, `history.csv`, a sweep's `sweep-plan.json` or
-//! `sweep.json`, or an ensemble member's `member.json`): it then removes only the files a
+//! Stiction run (a folder holding a run's `summary.json`, a sweep's `sweep-plan.json` or
+//! `sweep.json`, or an ensemble member's `member.json`, each read and found to be what a
+//! Stiction run writes; a file of the name alone does not make a run): it then removes only the files a
 //! Stiction run writes (by name: [`written_by_stiction`]; folders only when everything in them
 //! is), and refuses, naming them, when the folder holds anything else (a user's notes, data).
 //!
@@ -14,8 +15,14 @@
 use crate::error::{Result, StictionError};
 use std::path::{Path, PathBuf};
 
-/// Files whose presence marks a folder as written by an earlier run of Stiction.
-const RUN_MARKERS: [&str; 5] = ["summary.json", "history.csv", "sweep-plan.json", "sweep.json", "member.json"];
+/// Files that mark a folder as written by an earlier run of Stiction, each with a key its JSON
+/// object holds (`sweep.json`: a list of run summaries, each with a status).
+const RUN_MARKERS: [(&str, &str); 4] = [
+    ("summary.json", "status"),
+    ("sweep-plan.json", "fingerprint"),
+    ("sweep.json", "status"),
+    ("member.json", "status"),
+];
 
 /// The lock file of a folder in use.
 pub const LOCK_FILE: &str = ".stiction-lock";
@@ -80,9 +87,17 @@ fn foreign_entries(dir: &Path, prefix: &str) -> Vec<String> {
     foreign
 }
 
-/// Whether `dir` holds a run's marker file.
+/// Whether `dir` holds a run's marker file: one of [`RUN_MARKERS`], a JSON object with its key.
 fn is_run_folder(dir: &Path) -> bool {
-    RUN_MARKERS.iter().any(|m| dir.join(m).exists())
+    RUN_MARKERS.iter().any(|(file, key)| {
+        std::fs::read_to_string(dir.join(file))
+            .ok()
+            .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+            .is_some_and(|value| match value.as_array() {
+                Some(runs) => runs.first().is_some_and(|run| run.get(key).is_some()),
+                None => value.get(key).is_some(),
+            })
+    })
 }
 
 /// The process holding the lock file `path`, if it is still running (None: no lock, or a
@@ -156,8 +171,8 @@ pub fn check(out: &Path, overwrite: bool) -> Result<bool> {
             refuse(format!("is not empty ({} entries); give an empty or new folder with --out", entries.len()))
         }
         (true, false) => refuse(format!(
-            "is not empty and holds no earlier run ({}); --overwrite replaces only an earlier run's folder",
-            RUN_MARKERS.join(", ")
+            "is not empty and holds no earlier run (a Stiction {}); --overwrite replaces only an earlier run's folder",
+            RUN_MARKERS.map(|(file, _)| file).join(", ")
         )),
         (true, true) => {
             let foreign = foreign_entries(out, "");
@@ -282,9 +297,13 @@ mod tests {
     #[test]
     fn overwrite_removes_a_runs_files_only_and_refuses_a_folder_with_others() {
         let out = scratch("overwrite");
+        // files of a run's names alone do not make a run
         for f in ["history.csv", "summary.json", "case_00001.vtu"] {
             std::fs::write(out.join(f), "x").unwrap();
         }
+        let error = check(&out, true).unwrap_err().to_string();
+        assert!(error.contains("holds no earlier run"), "{error}");
+        std::fs::write(out.join("summary.json"), r#"{"status": "completed"}"#).unwrap();
         std::fs::create_dir_all(out.join("max=2")).unwrap();
         std::fs::write(out.join("max=2").join("summary.json"), "x").unwrap();
         assert!(check(&out, true).unwrap());
@@ -325,7 +344,7 @@ mod tests {
             std::fs::write(out.join(LOCK_FILE), format!("1 {start}\n")).unwrap();
             let error = lock(&out).unwrap_err().to_string();
             assert!(error.contains("in use by a running Stiction (process 1"), "{error}");
-            std::fs::write(out.join("summary.json"), "x").unwrap();
+            std::fs::write(out.join("summary.json"), r#"{"status": "running"}"#).unwrap();
             let error = check(&out, true).unwrap_err().to_string();
             assert!(error.contains("process 1"), "{error}");
         }

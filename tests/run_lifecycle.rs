@@ -192,6 +192,14 @@ fn an_earlier_run_is_replaced_only_with_overwrite() {
         outcome(&mut stiction(&["run", case, "--quiet", "--overwrite", "--out", foreign.to_str().unwrap()]));
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("holds no earlier run") && foreign.join("notes.txt").exists(), "{stderr}");
+    // nor is a user's file that happens to have a run's name
+    let named = scratch("named-like-a-run");
+    std::fs::create_dir_all(&named).unwrap();
+    std::fs::write(named.join("history.csv"), "time,force\n0,1\n").unwrap();
+    let (code, stderr) =
+        outcome(&mut stiction(&["run", case, "--quiet", "--overwrite", "--out", named.to_str().unwrap()]));
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("holds no earlier run") && named.join("history.csv").exists(), "{stderr}");
     // an earlier run beside the user's own files: --overwrite refuses, naming them, and removes nothing
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
     std::fs::create_dir_all(out.join("data")).unwrap();
