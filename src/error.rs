@@ -42,6 +42,7 @@ impl StictionError {
         match self {
             StictionError::RunFailed { .. } => 1,
             StictionError::Interrupted { .. } | StictionError::EnsembleInterrupted { .. } => 130,
+            StictionError::Mesh(stiction_meshes::MeshError::GmshInterrupted { .. }) => 130,
             StictionError::EnsembleFailed { .. } => 1,
             StictionError::Core(stiction_core::CoreError::Write { .. }) => 1,
             _ => 2,

@@ -353,11 +353,11 @@ fn calibrate(table: &std::path::Path, output: &std::path::Path, lo: usize, uo: u
     ExitCode::SUCCESS
 }
 
-/// A flag set by the first Ctrl-C (SIGINT): the run stops after the increment in progress and
+/// A flag set by the first Ctrl-C (SIGINT, or SIGTERM as a batch system sends): the run stops after the increment in progress and
 /// writes its summary. A second Ctrl-C ends the program at once (exit status 130); the files of
 /// every committed increment are complete either way, as each is written atomically.
 fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
-    let flag = Arc::new(AtomicBool::new(false));
+    let flag = stiction::resources::interrupt_flag();
     let seen = flag.clone();
     let installed = ctrlc::set_handler(move || {
         if seen.swap(true, Ordering::SeqCst) {

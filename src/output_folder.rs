@@ -206,6 +206,20 @@ pub fn prepare(out: &Path, overwrite: bool) -> Result<()> {
     std::fs::create_dir_all(out).map_err(io)
 }
 
+/// Removes the temporary files of atomic writes (`<file>.tmp`, where `<file>` is one a run
+/// writes) that a killed run left in `out`: called on resume, under the folder's lock.
+pub fn remove_temporaries(out: &Path) -> Result<()> {
+    for entry in std::fs::read_dir(out).into_iter().flatten().flatten() {
+        let name = entry.file_name().to_string_lossy().to_string();
+        if name.strip_suffix(".tmp").is_some_and(written_by_stiction) && entry.path().is_file() {
+            std::fs::remove_file(entry.path()).map_err(|source| {
+                StictionError::Core(stiction_core::CoreError::Write { path: entry.path(), source })
+            })?;
+        }
+    }
+    Ok(())
+}
+
 /// A held lock on an output folder; removed when dropped.
 #[derive(Debug)]
 pub struct FolderLock {

@@ -15,6 +15,19 @@ pub fn available_memory() -> Option<u64> {
 
 pub use stiction_meshes::error::gib;
 
+/// The program's interrupt flag: set by the Ctrl-C / SIGTERM handler the `stiction` program
+/// installs, read by work that is not a run's increment loop (meshing). One per process, as the
+/// signal handler is.
+pub fn interrupt_flag() -> std::sync::Arc<std::sync::atomic::AtomicBool> {
+    static FLAG: std::sync::OnceLock<std::sync::Arc<std::sync::atomic::AtomicBool>> = std::sync::OnceLock::new();
+    FLAG.get_or_init(Default::default).clone()
+}
+
+/// Whether the program was interrupted ([`interrupt_flag`]).
+pub fn interrupted() -> bool {
+    interrupt_flag().load(std::sync::atomic::Ordering::SeqCst)
+}
+
 /// Bytes this process holds in memory now (its resident set; None where it cannot be read).
 pub fn own_memory() -> Option<u64> {
     let pid = sysinfo::get_current_pid().ok()?;

@@ -221,6 +221,8 @@ fn solve_built(
     let _lock = crate::output_folder::lock(&out)?;
     if checkpoint.is_none() {
         crate::output_folder::prepare(&out, options.overwrite)?;
+    } else {
+        crate::output_folder::remove_temporaries(&out)?;
     }
     for (name, points) in &built.layouts {
         let path = out.join(format!("{name}_points.csv"));

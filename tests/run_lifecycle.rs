@@ -96,6 +96,47 @@ fn summary(out: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
 }
 
+/// Whether a gmsh process given `-clscale <scale>` is running (by its command line).
+fn gmsh_running_with(scale: &str) -> bool {
+    std::fs::read_dir("/proc").unwrap().flatten().any(|p| {
+        std::fs::read(p.path().join("cmdline")).is_ok_and(|c| {
+            let args: Vec<&[u8]> = c.split(|&b| b == 0).collect();
+            args.first().is_some_and(|a| a.ends_with(b"gmsh"))
+                && args.windows(2).any(|w| w == [b"-clscale", scale.as_bytes()])
+        })
+    })
+}
+
+/// SIGTERM (a batch system's stop) while gmsh meshes: gmsh is stopped with the run, nothing is
+/// cached, no output folder is made, and the exit status is 130.
+#[test]
+fn sigterm_while_meshing_stops_gmsh_too() {
+    let out = scratch("sigterm-meshing");
+    // a size factor no other test uses, so that its gmsh is known by its command line
+    let scale = "0.0301";
+    let mut child = stiction(&["run", "cases/ru-sphere/smooth-lj-w1.toml", "--quiet", "--out"])
+        .arg(&out)
+        .args(["--set", &format!("mesh.size_factor={scale}")])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while !gmsh_running_with(scale) {
+        assert!(child.try_wait().unwrap().is_none(), "the run ended before gmsh started");
+        assert!(start.elapsed() < Duration::from_secs(60), "gmsh did not start within 60 s");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    std::thread::sleep(Duration::from_millis(500));
+    signal(&child, "TERM");
+    let result = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted after") && stderr.contains("gmsh was stopped"), "{stderr}");
+    assert!(!gmsh_running_with(scale), "gmsh outlived the run");
+    assert!(!out.exists(), "an interrupted meshing made the output folder");
+}
+
 #[test]
 fn ctrl_c_finishes_the_increment_writes_an_interrupted_summary_and_exits_130() {
     let out = scratch("sigint");
@@ -150,6 +191,8 @@ fn a_killed_run_resumes_from_its_last_checkpoint_and_ends_as_one_that_ran_throug
     signal(&child, "KILL");
     child.wait().unwrap();
     let (killed_rows, _) = check_files_whole(&out);
+    // what a kill during an atomic write leaves behind: removed on resume, a user's file kept
+    std::fs::write(out.join("rough-w6-quick_00099.vtu.tmp"), "half a frame").unwrap();
     let case = "cases/ru-rough-sphere/rough-w6-quick.toml";
     let resume: Vec<&str> =
         ["run", case, "--quiet", "--resume", "--out", out.to_str().unwrap()].into_iter().chain(settings).collect();
@@ -166,6 +209,7 @@ fn a_killed_run_resumes_from_its_last_checkpoint_and_ends_as_one_that_ran_throug
     }
     assert_eq!(summary(&out)["increments"], summary(&straight)["increments"]);
     assert!(!out.join("restart.bin").exists(), "the completed run removed its checkpoint");
+    assert!(!out.join("rough-w6-quick_00099.vtu.tmp").exists(), "a temporary file of the killed run was left");
     println!("SIGKILL after {killed_rows} history rows, resumed: the same history as one run");
 }
 

@@ -33,6 +33,8 @@ pub enum MeshError {
         gib(*used_bytes), gib(*limit_bytes)
     )]
     GmshMemoryLimit { path: PathBuf, seconds: f64, used_bytes: u64, limit_bytes: u64, settings: String },
+    #[error("meshing '{path}' interrupted after {seconds:.0} s; gmsh was stopped and nothing was cached")]
+    GmshInterrupted { path: PathBuf, seconds: f64 },
     #[error(
         "mesh file '{path}' is {}; reading it needs about {}, more than the {} the run may count on",
         gib(*file_bytes), gib(*needed_bytes), gib(*limit_bytes)

@@ -30,12 +30,14 @@ pub struct GmshLimits<'a> {
     pub memory_limit_bytes: Option<u64>,
     /// Told every [`PROGRESS_INTERVAL`] of a meshing that takes longer than that.
     pub progress: Option<&'a mut dyn FnMut(&GmshProgress)>,
+    /// Asked between polls: gmsh is stopped once it says true (an interrupted program).
+    pub interrupted: Option<&'a dyn Fn() -> bool>,
 }
 
 impl GmshLimits<'_> {
     /// A time limit alone: no memory limit, no progress.
     pub fn time(time_limit_seconds: f64) -> Self {
-        GmshLimits { time_limit_seconds, memory_limit_bytes: None, progress: None }
+        GmshLimits { time_limit_seconds, memory_limit_bytes: None, progress: None, interrupted: None }
     }
 }
 
@@ -229,6 +231,10 @@ fn run_gmsh(
             break status;
         }
         let elapsed = start.elapsed();
+        if limits.interrupted.is_some_and(|interrupted| interrupted()) {
+            stop(&mut child);
+            return Err(MeshError::GmshInterrupted { path: geo.to_path_buf(), seconds: elapsed.as_secs_f64() });
+        }
         if elapsed.as_secs_f64() > limits.time_limit_seconds {
             stop(&mut child);
             return Err(MeshError::GmshTimeLimit {

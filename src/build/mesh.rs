@@ -41,6 +41,7 @@ pub fn load_mesh(case: &LoadedCase) -> Result<(Mesh, PathBuf)> {
                 time_limit_seconds: spec.time_limit,
                 memory_limit_bytes: memory.map(gmsh_limit),
                 progress: Some(&mut report),
+                interrupted: Some(&crate::resources::interrupted),
             };
             return mesh_geo(&geo, &options, &cache, &mut limits).map_err(|e| size_error(case, e));
         }
