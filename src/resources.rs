@@ -28,6 +28,33 @@ pub fn interrupted() -> bool {
     interrupt_flag().load(std::sync::atomic::Ordering::SeqCst)
 }
 
+/// Bytes free on the disk that holds `path` (the mounted file system with the longest mount
+/// point above it; None where none is found).
+pub fn free_disk(path: &std::path::Path) -> Option<u64> {
+    let path = std::fs::canonicalize(path).ok()?;
+    let disks = sysinfo::Disks::new_with_refreshed_list();
+    disks
+        .list()
+        .iter()
+        .filter(|d| path.starts_with(d.mount_point()))
+        .max_by_key(|d| d.mount_point().as_os_str().len())
+        .map(|d| d.available_space())
+}
+
+/// Bytes of the files under `dir`.
+pub fn folder_bytes(dir: &std::path::Path) -> u64 {
+    std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| match e.file_type() {
+            Ok(t) if t.is_dir() => folder_bytes(&e.path()),
+            Ok(_) => e.metadata().map_or(0, |m| m.len()),
+            Err(_) => 0,
+        })
+        .sum()
+}
+
 /// Bytes this process holds in memory now (its resident set; None where it cannot be read).
 pub fn own_memory() -> Option<u64> {
     let pid = sysinfo::get_current_pid().ok()?;

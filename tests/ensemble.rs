@@ -83,6 +83,8 @@ fn aggregate_matches_the_members_and_a_rerun_resumes() {
     let (code, stdout, stderr) = stiction(&ensemble_args(&out, &[]));
     assert_eq!(code, Some(0), "{stderr}");
     assert!(stdout.contains("4 of 4 members completed"), "{stdout}");
+    // the cost of the members left, from the first one done, even when quiet
+    assert!(stderr.contains("estimate from member-00") && stderr.contains("the 3 members left need about"), "{stderr}");
     let ensemble = json(&out.join("ensemble.json"));
     for quantity in ["max_force", "most_tensile_force", "max_contact_area", "work_of_flat"] {
         let values: Vec<f64> = (0..4)

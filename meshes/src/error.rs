@@ -42,10 +42,12 @@ pub enum MeshError {
     TooLargeToRead { path: PathBuf, file_bytes: u64, needed_bytes: u64, limit_bytes: u64 },
 }
 
-/// Bytes as GiB (or MiB below one GiB), for messages.
+/// Bytes as GiB (or MiB below one GiB, KiB below one MiB), for messages.
 pub fn gib(bytes: u64) -> String {
     if bytes >= 1 << 30 {
         format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
+    } else if bytes < 1 << 20 {
+        format!("{:.0} KiB", bytes as f64 / 1024.0)
     } else {
         format!("{:.0} MiB", bytes as f64 / f64::from(1u32 << 20))
     }

@@ -152,6 +152,33 @@ pub fn describe(root: &Path, o: &MemberOutcome, done: usize, total: usize) -> St
     format!("{} of {total}: {} [{}]: {}{wall}{error}", done, o.folder, o.sets.join(", "), o.status)
 }
 
+/// After the first member that completes: what the members still to run will take, from its
+/// wall time and the size of its folder (a warning when that is more than the disk has free).
+pub fn estimate(root: &Path, first: &MemberOutcome, left: usize, concurrent: usize) -> Option<String> {
+    let folder = root.join(&first.folder);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(folder.join("summary.json")).ok()?).ok()?;
+    let wall = summary["wall_seconds"].as_f64()?;
+    let bytes = crate::resources::folder_bytes(&folder);
+    let hours = wall * left as f64 / concurrent.max(1) as f64 / 3600.0;
+    let need = bytes.saturating_mul(left as u64);
+    let free = crate::resources::free_disk(root);
+    let disk = free.map_or(String::new(), |f| format!(" ({} free)", crate::resources::gib(f)));
+    let line = format!(
+        "estimate from {}: {wall:.1} s and {} each; the {left} members left need about {hours:.2} h at {concurrent} \
+         at once and {} on disk{disk}",
+        first.folder,
+        crate::resources::gib(bytes),
+        crate::resources::gib(need)
+    );
+    Some(match free {
+        Some(f) if need > f => format!(
+            "warning: {line}: more than the disk has free; stop with Ctrl-C and give fewer members, or output.vtk = false"
+        ),
+        _ => line,
+    })
+}
+
 /// The ensemble's end: the earlier and new outcomes in member order, then the aggregate written
 /// and plotted, unless the run was interrupted (then only the completed members stay, to be
 /// resumed).
@@ -200,10 +227,17 @@ pub fn run_ensemble(path: &Path, sets: &[String], options: &EnsembleOptions) -> 
     let root = prepared.root.clone();
     let quiet = options.quiet;
     let (done, total) = (std::sync::atomic::AtomicUsize::new(0), prepared.todo.len());
+    let estimated = std::sync::atomic::AtomicBool::new(false);
     let report = move |o: &MemberOutcome| {
         let done = done.fetch_add(1, Ordering::SeqCst) + 1;
         if !quiet || !o.completed() {
             eprintln!("{}", describe(&root, o, done, total));
+        }
+        // printed even when quiet: an ensemble's cost is known only once a member has run
+        if o.completed() && done < total && !estimated.swap(true, Ordering::SeqCst) {
+            if let Some(line) = estimate(&root, o, total - done, budget.concurrent) {
+                eprintln!("{line}");
+            }
         }
     };
     let new = local::run_members(&prepared.todo, &prepared.context, budget, &report);
