@@ -2,7 +2,9 @@
 //! "available" figure, or a container's limit where that is smaller). The size checks before
 //! meshing, reading and factoring a mesh ([`crate::build::mesh`], [`crate::run`]) compare
 //! against it, so that a model too large for the machine is refused with the key that made it
-//! so instead of ending in an allocation failure.
+//! so instead of ending in an allocation failure. Also: the free disk and a folder's size (an
+//! ensemble's estimate), and the process's interrupt flag (for work outside a run's increment
+//! loop, such as meshing).
 
 /// Bytes of memory available to this process now (None where the system does not say).
 pub fn available_memory() -> Option<u64> {
