@@ -2,7 +2,7 @@
 //! with the SI prefix that keeps them between 1 and 1000 (the Ru cases: uN), areas in the
 //! case's length unit squared, and the case's units stated.
 
-use crate::run::RunSummary;
+use stiction_core::record::RunSummary;
 
 /// `value` with 4 significant figures, without an exponent for magnitudes 1e-3 .. 1e6.
 pub fn significant(value: f64) -> String {

@@ -25,7 +25,7 @@ use stiction_core::record::{
     CyclesWriter, EventsRecorder, HistoryRecorder, MessageLog, Observer, SummaryWriter, VtkRecorder,
 };
 
-pub use stiction_core::record::{InterfaceSummary, RunSummary};
+pub use stiction_core::record::{InterfaceSummary, RunStatus, RunSummary};
 
 /// Options of `stiction run` beyond the case file.
 #[derive(Debug, Clone, Default)]
@@ -273,10 +273,10 @@ fn solve_built(
     for w in &summary.warnings {
         eprintln!("warning: {w}");
     }
-    if summary.status == "interrupted" {
+    if summary.status == RunStatus::Interrupted {
         return Err(StictionError::Interrupted { time: summary.final_time, out, resumable });
     }
-    if summary.status == "failed" {
+    if summary.status == RunStatus::Failed {
         let message = summary.message.clone().unwrap_or_default();
         return Err(StictionError::RunFailed { time: summary.final_time, message, out, resumable });
     }

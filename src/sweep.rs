@@ -11,9 +11,10 @@
 use crate::case::LoadedCase;
 use crate::error::{Result, StictionError};
 use crate::resume::CHECKPOINT_FILE;
-use crate::run::{RunOptions, RunSummary, output_directory, run};
+use crate::run::{RunOptions, output_directory, run};
 use std::path::Path;
 use stiction_core::output::write_atomically;
+use stiction_core::record::{RunStatus, RunSummary};
 
 /// The record a sweep writes into its folder at its start: the fingerprint of its problem.
 pub const SWEEP_PLAN: &str = "sweep-plan.json";
@@ -110,7 +111,7 @@ fn resume_member(case: &LoadedCase, folder: &Path, name: &str, options: RunOptio
     let completed = std::fs::read_to_string(folder.join("summary.json"))
         .ok()
         .and_then(|text| serde_json::from_str::<RunSummary>(&text).ok())
-        .filter(|summary| summary.status == "completed");
+        .filter(|summary| summary.status == RunStatus::Completed);
     if let Some(summary) = completed {
         eprintln!("{name}: completed earlier, kept");
         return Ok(summary);

@@ -21,7 +21,7 @@ const MAGIC: &[u8] = b"stiction checkpoint\n";
 
 /// The version of the checkpoint layout; a file of another version is refused by name (9: the
 /// record's checksum).
-pub const FORMAT_VERSION: u32 = 9;
+pub const FORMAT_VERSION: u32 = 10;
 
 /// The committed state of a model ([`crate::model::Model::saved_state`]).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]

@@ -13,6 +13,7 @@ pub mod cohesive;
 pub mod contact_resistance;
 pub mod damage_dissipation;
 pub mod footprint;
+pub mod footprint_compliance;
 pub mod local_footprint;
 pub mod mesh_split;
 pub mod plugin;
@@ -21,4 +22,5 @@ pub mod point_placement;
 pub mod rigid_flat;
 pub mod surface_locator;
 
-pub use rigid_flat::{DiscretePoint, RigidFlat, RigidFlatSpec};
+pub use point_placement::DiscretePoint;
+pub use rigid_flat::{RigidFlat, RigidFlatSpec};

@@ -5,10 +5,17 @@
 //! the face's shape functions at the point.
 
 use crate::footprint::{corner_area, locate_footprint};
-use crate::rigid_flat::{DiscretePoint, plane_basis};
-use crate::surface_locator::SurfaceLocator;
+use crate::surface_locator::{SurfaceLocator, plane_basis};
 use stiction_core::CoreError;
 use stiction_core::mesh::Mesh;
+
+/// A discrete point: in-plane coordinates (along two directions orthogonal to the normal,
+/// measured from the surface's lowest point) and its height toward the flat.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DiscretePoint {
+    pub in_plane: [f64; 2],
+    pub height: f64,
+}
 
 /// One placed point.
 #[derive(Debug, Clone)]

@@ -28,7 +28,7 @@
 use crate::contact_resistance::{ContactSpot, ResistanceModel};
 use crate::damage_dissipation::{PointState, damages_secantly, point_dissipation};
 use crate::point_law::{evaluate_point, initial_states};
-use crate::point_placement::place_points;
+use crate::point_placement::{DiscretePoint, place_points};
 use std::sync::Arc;
 use stiction_core::CoreError;
 use stiction_core::amplitude::Amplitude;
@@ -59,14 +59,6 @@ pub struct RigidFlatSpec {
     pub viscosity: f64,
     /// Electrical contact resistance, computed at every commit when given.
     pub resistance: Option<ResistanceModel>,
-}
-
-/// A discrete point: in-plane coordinates (along two directions orthogonal to the normal,
-/// measured from the surface's lowest point) and its height toward the flat.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DiscretePoint {
-    pub in_plane: [f64; 2],
-    pub height: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -140,17 +132,6 @@ fn unit_normal(spec: &RigidFlatSpec, kinematics: Kinematics) -> Result<[f64; 3],
         )));
     }
     Ok(normal)
-}
-
-/// Two unit vectors spanning the plane normal to n.
-pub fn plane_basis(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
-    let a = if n[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
-    let d = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
-    let e1 = [a[0] - d * n[0], a[1] - d * n[1], a[2] - d * n[2]];
-    let l = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
-    let e1 = [e1[0] / l, e1[1] / l, e1[2] / l];
-    let e2 = [n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]];
-    (e1, e2)
 }
 
 impl RigidFlat {

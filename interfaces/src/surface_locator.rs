@@ -51,7 +51,7 @@ impl<'a> SurfaceLocator<'a> {
         if faces.is_empty() {
             return Err(CoreError::EmptyGroup { name: group.name.clone(), what: "triangular faces".into() });
         }
-        let plane = crate::rigid_flat::plane_basis(direction);
+        let plane = plane_basis(direction);
         let project = |x: [f64; 3]| [dot(x, plane.0), dot(x, plane.1)];
         let boxes = faces
             .iter()
@@ -120,4 +120,15 @@ impl<'a> SurfaceLocator<'a> {
         }
         Some(SurfacePoint { nodes: face.to_vec(), shape, position })
     }
+}
+
+/// Two unit vectors spanning the plane normal to n.
+pub fn plane_basis(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let a = if n[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let d = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+    let e1 = [a[0] - d * n[0], a[1] - d * n[1], a[2] - d * n[2]];
+    let l = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
+    let e1 = [e1[0] / l, e1[1] / l, e1[2] / l];
+    let e2 = [n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2], n[0] * e1[1] - n[1] * e1[0]];
+    (e1, e2)
 }

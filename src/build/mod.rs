@@ -75,7 +75,7 @@ pub fn build_with_mesh(case: &LoadedCase, mesh: Mesh, mesh_path: PathBuf) -> Res
         i.points.as_ref().and_then(|p| p.footprint_correction.as_ref()).is_some_and(|c| c.compliance.is_none())
     });
     let flexibility = if computes_compliance {
-        Some(std::cell::RefCell::new(footprint_correction::ElasticFlexibility::new(
+        Some(std::cell::RefCell::new(footprint_correction::body_flexibility(
             case,
             &mesh,
             kin,

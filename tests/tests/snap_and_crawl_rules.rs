@@ -20,7 +20,7 @@ use stiction_core::model::Model;
 use stiction_core::nonlinear::{
     IncrementFailure, IncrementReport, NewtonSettings, NewtonSolver, NonlinearSolver, ReferenceScales,
 };
-use stiction_core::path::driver::{CRAWL_COMMITS, CRAWL_FRACTION, MAX_SNAPS_WITHOUT_PROGRESS};
+use stiction_core::path::policy::{CRAWL_COMMITS, CRAWL_FRACTION, MAX_SNAPS_WITHOUT_PROGRESS};
 use stiction_core::path::{Incrementation, RunPlan, SnapMethod, StartPredictor, StepPlan, TangentChoice, run_steps};
 use stiction_core::problem::NonlinearProblem;
 use stiction_core::record::{CommittedIncrement, Observer, RunSummary};

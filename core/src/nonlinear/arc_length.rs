@@ -37,6 +37,14 @@ pub struct PreviousIncrement {
     pub dt: f64,
 }
 
+impl PreviousIncrement {
+    /// Whether the increment moved forward in pseudo-time and in the displacements: a crossing
+    /// can start from it.
+    pub fn moved_forward(&self) -> bool {
+        self.dt > 0.0 && self.du.iter().any(|&x| x != 0.0)
+    }
+}
+
 /// One arc-length increment's request: length `ds` (free-dof displacement norm) from the
 /// committed state at `t0`, oriented by `previous`; `time_weight` is c, and `rate_step` the
 /// step of the central differences for dR/dt (a small fraction of the time scale of the

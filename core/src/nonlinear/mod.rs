@@ -68,7 +68,7 @@ pub enum IncrementFailure {
     /// constraint has no gradient).
     NoDissipation,
     /// A load-controlled increment converged on another branch than the path's (without
-    /// continuation: it moved more than [`crate::path::driver::JUMP_RATIO`] times what the last
+    /// continuation: it moved more than [`crate::path::policy::JUMP_RATIO`] times what the last
     /// increment's rate predicts, "moved too far"); it is cut like one that did not converge.
     Jumped {
         why: &'static str,

@@ -5,7 +5,7 @@
 //! that failed.
 
 use super::step::Incrementation;
-use super::{Attempt, Crossing, CrossingOutcome, PathControl, Solvers, StepWindow};
+use super::{Attempt, Crossing, CrossingOutcome, Cut, CutRefused, PathControl, Solvers, StepWindow};
 use crate::model::Model;
 use crate::nonlinear::arc_length::{ArcLengthRequest, PreviousIncrement, solve_arc_length_increment};
 use crate::nonlinear::{IncrementFailure, ReferenceScales};
@@ -32,7 +32,7 @@ impl ArcLengthControl {
     /// displacement rate (so sqrt 2 |du|), capped at 10 |du|. None when it did not move.
     pub fn start(previous: PreviousIncrement, resume_after: f64) -> Option<Self> {
         let length = norm(&previous.du);
-        (length > 0.0 && previous.dt > 0.0).then(|| Self {
+        previous.moved_forward().then(|| Self {
             ds: length * std::f64::consts::SQRT_2,
             ds_initial: length * std::f64::consts::SQRT_2,
             ds_max: 10.0 * length,
@@ -86,12 +86,12 @@ impl PathControl for ArcLengthControl {
         }
     }
 
-    fn cut(&mut self, failure: &IncrementFailure) -> Result<String, String> {
+    fn cut(&mut self, _failure: &IncrementFailure) -> Result<Cut, CutRefused> {
         self.ds *= 0.5;
         if self.ds < 1e-4 * self.ds_initial {
-            Err(format!("arc-length continuation stalled (arc length {:.3e}) after: {failure}", self.ds))
+            Err(CutRefused::ArcLengthStalled { arc_length: self.ds })
         } else {
-            Ok(format!("arc length cut to {:.2e}", self.ds))
+            Ok(Cut::ArcLength(self.ds))
         }
     }
 }

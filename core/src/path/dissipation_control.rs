@@ -11,7 +11,7 @@
 
 use super::arc_length_control::ArcLengthControl;
 use super::step::Incrementation;
-use super::{Attempt, Crossing, CrossingOutcome, PathControl, Solvers, StepWindow};
+use super::{Attempt, Crossing, CrossingOutcome, Cut, CutRefused, PathControl, Solvers, StepWindow};
 use crate::model::Model;
 use crate::nonlinear::arc_length::PreviousIncrement;
 use crate::nonlinear::dissipation::{DissipationRequest, dissipation_of, solve_dissipation_increment};
@@ -43,7 +43,7 @@ impl DissipationControl {
     /// A crossing from the last converged load-controlled increment `previous`; None when it
     /// did not move.
     pub fn start(previous: PreviousIncrement, resume_after: f64) -> Option<Self> {
-        (previous.dt > 0.0 && previous.du.iter().any(|&x| x != 0.0)).then_some(Self {
+        previous.moved_forward().then_some(Self {
             energy: None,
             energy_initial: 0.0,
             previous,
@@ -135,23 +135,23 @@ impl PathControl for DissipationControl {
         }
     }
 
-    fn cut(&mut self, failure: &IncrementFailure) -> Result<String, String> {
+    fn cut(&mut self, failure: &IncrementFailure) -> Result<Cut, CutRefused> {
         if let Some(arc) = self.fallback.as_mut() {
             return arc.cut(failure);
         }
         let Some(energy) = self.energy.as_mut() else {
-            return Err(format!("dissipation control could not start: {failure}"));
+            return Err(CutRefused::DissipationNotStarted);
         };
         if matches!(failure, IncrementFailure::NoDissipation) {
             // more than the cracks have left: see the module documentation
             *energy *= 0.25;
-            return Ok(format!("energy per increment cut to {energy:.2e} (nothing left to damage at the last one)"));
+            return Ok(Cut::Energy { energy: *energy, emptied: true });
         }
         *energy *= 0.5;
         if *energy < 1e-4 * self.energy_initial {
-            Err(format!("dissipation control stalled (energy per increment {energy:.3e}) after: {failure}"))
+            Err(CutRefused::DissipationStalled { energy: *energy })
         } else {
-            Ok(format!("energy per increment cut to {energy:.2e}"))
+            Ok(Cut::Energy { energy: *energy, emptied: false })
         }
     }
 }

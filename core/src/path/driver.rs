@@ -3,37 +3,17 @@
 //! [`DissipationControl`]), commits each converged increment and notifies the observers. It
 //! does no output of its own.
 //!
-//! Hand-over rules: the crossing takes over after `after_cuts` consecutive failed attempts, or
-//! when a converged load-controlled increment moved more than [`JUMP_RATIO`] times what the
-//! last increment's rate predicts, or turned back against it while the load did not reverse (a
-//! silent jump to another branch, or a peak stepped over inside the increment); it hands back once t moves
-//! forward past the target that failed, or when it cannot go on inside its step window. Without
-//! continuation such a jump counts as a failed attempt and is cut like one: the fold is then
-//! crossed by a snap (below), not where Newton's iterations happened to land.
-//!
-//! Snaps: when neither control can go on (load control cut below its minimum increment, arc
-//! length stalled or unable to start, e.g. a run that starts inside the jump-in range), the
-//! driver moves the model just past the committed time to the stable state the
-//! displacement-controlled system snaps to ([`SnapMethod`]: by descent,
+//! What the driver does after each attempt (cut, hand over to a crossing, snap, stop) is the
+//! [`PathPolicy`]'s decision: its rules, each named and documented in [`super::policy`], read
+//! the facts the driver gathers. The driver carries the decisions out: it rolls back, cuts the
+//! control, starts the crossing, or moves the model just past the committed time to the stable
+//! state the displacement-controlled system snaps to ([`SnapMethod`]: by descent,
 //! [`crate::nonlinear::settle`], or along the body's overdamped motion,
 //! [`crate::nonlinear::damped_flow`], whose steps are committed so that plastic flow follows
-//! the snap's path; or by descent, with the flow where the descent finds no stable state).
-//! The state is committed as a jump and load control goes on from it. A crawl
-//! (load control creeping towards folds it cannot pass, [`CRAWL_COMMITS`]) is passed by snaps one
-//! initial increment ahead. Without continuation, a fold that two stalled attempts place
-//! closer than the next cut attempt would reach ([`fold_ahead`]) is snapped over at once,
-//! without the cuts down to it.
-//! After [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row without a load step in between, the next
-//! snap goes one initial increment ahead too; where that is no further than the minimum
-//! increment, the run stops with the reason.
-//!
-//! An unbalanced start: the initial state is not solved, only assembled; where its residual
-//! fails the solver's residual test (an adhesive surface started inside its jump-in range pulls
-//! the body before any load is applied), the nearest equilibrium may lie across a snap, which no
-//! shorter increment reaches. The first attempt that fails to converge from such a start (its
-//! iterations diverged or stagnated; an interface law that fails on an iterate is cut as
-//! before) is not cut: the driver snaps at once from it (over the minimum increment, where
-//! cutting would have ended), and says that the start was out of equilibrium and by how much.
+//! the snap's path; or by descent, with the flow where the descent finds no stable state),
+//! commits the snapped state as a jump, and load control goes on from it. The crossing hands
+//! back once t moves forward past the target that failed, or when it cannot go on inside its
+//! step window.
 //!
 //! Tangents: a failed attempt may switch the model between the materials' consistent and
 //! stabilized tangents for the attempts after it, and a failed snap is retried on the other
@@ -47,6 +27,7 @@
 use super::arc_length_control::ArcLengthControl;
 use super::dissipation_control::DissipationControl;
 use super::load_control::{LoadControl, StartPredictor};
+use super::policy::{CRAWL_FRACTION, Decision, FailureFacts, JumpFacts, PathPolicy, jumped};
 use super::step::StepPlan;
 use super::tangent_choice::{TangentChoice, TangentSwitch};
 use super::{Attempt, Crossing, PathControl, Solvers, StepWindow};
@@ -59,7 +40,7 @@ use crate::nonlinear::damped_flow::FlowSettings;
 use crate::nonlinear::{IncrementFailure, IncrementReport, NonlinearSolver, ReferenceScales};
 use crate::problem::NonlinearProblem;
 use crate::record::interface_tracker::{CommitContext, InterfaceInfo};
-use crate::record::summary::Units;
+use crate::record::summary::{RunStatus, SnapSolve, Units};
 use crate::record::{CommittedIncrement, InterfaceTracker, Observer, RunSummary};
 use crate::vector::{dot, norm};
 use std::collections::BTreeMap;
@@ -73,47 +54,6 @@ pub mod snapping;
 pub use checkpointing::Checkpoint;
 use checkpointing::EarlierParts;
 use snapping::SnapInProgress;
-
-/// A load-controlled increment whose displacement increment exceeds this multiple of the one
-/// the previous increment's rate predicts counts as a jump over a limit point.
-pub const JUMP_RATIO: f64 = 5.0;
-
-/// Snaps in a row (no ordinary increment converging in between, none moving the load on by more
-/// than the minimum increment) after which the next snap goes one initial increment ahead (or
-/// the run stops, where that is no further than the minimum increment).
-pub const MAX_SNAPS_WITHOUT_PROGRESS: usize = 3;
-
-/// A crawl: this many committed load-controlled increments in a row, each below
-/// [`CRAWL_FRACTION`] of the step's maximum increment (sizes only cuts produce). The path creeps
-/// towards a fold it cannot pass by cutting (each increment shrinks geometrically); the driver
-/// then settles one initial increment ahead instead. Until a load-controlled increment
-/// converges again (or the load reaches a breakpoint), the path is taken to be still crawling: a
-/// failed attempt settles one initial increment ahead at once instead of being cut (a 3D contact
-/// front that crosses the mesh node by node folds again at every node; cutting down to each of
-/// those folds costs more than the settling that passes them).
-pub const CRAWL_COMMITS: usize = 6;
-pub const CRAWL_FRACTION: f64 = 1e-2;
-
-/// A fold located from two stalled attempts: past a fold at load t_f no equilibrium is near,
-/// and the lowest residual an attempt to the target T stalls at grows with its overshoot,
-/// r ~ c (T - t_f). Two load-controlled attempts that stagnate, to T_1 and a nearer T_2 with
-/// floors r_1 > r_2 (from the same committed state, or from two on the way there: a crawl's
-/// converged increments creep towards the fold between its failures), place the fold by the
-/// secant t_f = (r_1 T_2 - r_2 T_1) / (r_1 - r_2). Where it lies within the next attempt's
-/// reach of the committed state t, |t_f - t| < cut (T_2 - t), that attempt overshoots the fold
-/// too, and so would every shorter one down to it: the driver then snaps at once over that next
-/// increment instead of cutting on towards its minimum (six to nine failed solves per fold in
-/// the w = 6 plastic 3D quarter, where the contact front folds at each ring of surface nodes).
-/// A fold placed farther ahead leaves load control to cut as before, and so does one placed
-/// farther behind (a floor that fell no faster than the overshoot: not yet the linear regime).
-/// The attempt remembered is forgotten when the committed state passes its target (it was no
-/// fold), at a snap and at a step's start. Only without continuation: with it, the crossing
-/// follows the path round the fold (and locates it) once load control has failed
-/// `after_cuts` times. Returns t_f - t.
-fn fold_ahead(t: f64, earlier: (f64, f64), later: (f64, f64)) -> Option<f64> {
-    let ((target_1, r_1), (target_2, r_2)) = (earlier, later);
-    (target_2 < target_1 && r_2 < r_1).then(|| (r_1 * target_2 - r_2 * target_1) / (r_1 - r_2) - t)
-}
 
 /// How a converged increment was solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -265,7 +205,6 @@ impl<'a> Driver<'a> {
             load: LoadControl::new(&first.incrementation, plan.start_predictor),
             crossing: None,
             mass: None,
-            unbalanced_start: None,
             wall: Instant::now(),
             earlier: EarlierParts::default(),
             last_checkpoint: (Instant::now(), 0),
@@ -318,7 +257,7 @@ fn initial_summary(model: &Model, plan: &RunPlan, factor_nnz: usize) -> RunSumma
     RunSummary {
         case: plan.name.clone(),
         units: Units::of(&plan.units.0, &plan.units.1),
-        status: "running".into(),
+        status: RunStatus::Running,
         n_nodes: model.mesh.nodes.len(),
         n_cells: model.sets.iter().map(|s| s.n_cells()).sum(),
         n_free_dofs: model.n_free(),
@@ -326,10 +265,9 @@ fn initial_summary(model: &Model, plan: &RunPlan, factor_nnz: usize) -> RunSumma
         factor_nnz,
         output_directory: plan.output_directory.clone(),
         snap_method: match plan.snap {
-            SnapMethod::DampedFlow(_) => "damped-flow",
-            SnapMethod::Settle | SnapMethod::SettleOrFlow(_) => "settle",
-        }
-        .into(),
+            SnapMethod::DampedFlow(_) => SnapSolve::DampedFlow,
+            SnapMethod::Settle | SnapMethod::SettleOrFlow(_) => SnapSolve::Settle,
+        },
         warnings: model.contributions.iter().flat_map(|c| c.warnings()).collect(),
         ..Default::default()
     }
@@ -356,20 +294,8 @@ struct PathState {
     t: f64,
     /// The last converged increment (free dofs, dt), kept through cuts to start arc length.
     last_converged: Option<PreviousIncrement>,
-    /// Set when arc length had to hand back to load control; cleared by the next commit.
-    arc_blocked: bool,
-    cuts_since_commit: usize,
-    /// Snaps since the last ordinary increment.
-    snaps_in_a_row: usize,
-    /// Committed load-controlled increments in a row below the crawl size (see
-    /// [`CRAWL_COMMITS`]).
-    small_commits_in_a_row: usize,
-    /// Set by a crawl snap; cleared when a load-controlled (or crossing) increment converges,
-    /// when the load reaches a breakpoint and at a step's start (see [`CRAWL_COMMITS`]).
-    crawling: bool,
-    /// The last load-controlled attempt that stagnated, while the committed state is short of
-    /// its target: that target and the lowest residual it reached (see [`fold_ahead`]).
-    stagnated_attempt: Option<(f64, f64)>,
+    /// The counts and flags the path policy's rules read.
+    policy: PathPolicy,
     /// Interface-law failures that cut increments, each distinct one once: (law, interface,
     /// message) -> (times, first point).
     law_failures: BTreeMap<(String, String, String), (usize, usize)>,
@@ -412,9 +338,6 @@ struct Driver<'a> {
     mass: Option<Vec<f64>>,
     /// Which material tangent the solvers see, switched after failures.
     tangent: TangentSwitch,
-    /// Until the first commit: the initial state's residual norm and the solver's residual
-    /// test, when that fails (see the module documentation, "An unbalanced start").
-    unbalanced_start: Option<(f64, f64)>,
     /// When this process started on the run.
     wall: Instant,
     /// What the parts of the run before its resumption (if any) counted outside the summary.
@@ -446,7 +369,8 @@ impl Driver<'_> {
     fn initial_state(&mut self) -> Result<()> {
         self.model.apply_time(0.0);
         self.model.assemble(false)?;
-        self.unbalanced_start = self.start_imbalance();
+        let imbalance = self.start_imbalance();
+        self.path.policy.unbalanced_start(imbalance);
         self.model.commit();
         let initial = CommittedIncrement {
             step: 0,
@@ -470,7 +394,7 @@ impl Driver<'_> {
     /// committed and the path is between increments (no crossing under way, no cut since the
     /// commit), where a checkpoint resumes exactly.
     fn stop_due(&self) -> bool {
-        let clean = self.crossing.is_none() && self.path.cuts_since_commit == 0;
+        let clean = self.crossing.is_none() && self.path.policy.cuts_since_commit() == 0;
         clean && self.plan.stop_after_increments.is_some_and(|n| self.summary.increments >= n)
     }
 
@@ -499,69 +423,21 @@ impl Driver<'_> {
         if !resumed {
             self.load.start_step(&step.incrementation);
             self.path.since_output = 0;
-            self.path.crawling = false;
-            self.path.stagnated_attempt = None;
+            self.path.policy.step_started();
         }
         while self.path.t < step.end_time - 1e-12 * self.t_end {
             if self.plan.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::Relaxed)) || self.stop_due() {
                 return Ok(Some(Ending::Interrupted));
             }
             self.checkpoint_if_due()?;
-            let breakpoints = std::mem::take(&mut self.breakpoints);
-            let window = StepWindow {
-                t: self.path.t,
-                step_start,
-                step_end: step.end_time,
-                t_end: self.t_end,
-                breakpoints: &breakpoints,
-            };
-            if self.crossing.is_none() && self.path.small_commits_in_a_row >= CRAWL_COMMITS {
-                self.breakpoints = breakpoints;
-                self.path.small_commits_in_a_row = 0;
-                let reason = format!("crawling at t = {:.6} (dt = {:.2e})", self.path.t, self.load.dt);
-                match self.crawl_snap(si, &reason)? {
-                    Flow::Continue => continue,
-                    Flow::StepDone => break,
-                    Flow::Stop(message) => return Ok(Some(Ending::Failed(message))),
-                    Flow::Interrupted => return Ok(Some(Ending::Interrupted)),
-                }
-            }
-            let scales = self.scales();
-            let solvers = Solvers { linear: &mut *self.linear, nonlinear: &mut *self.nonlinear };
-            let via = if self.crossing.is_some() { Via::Crossing } else { Via::LoadControl };
-            let started = Instant::now();
-            // the load-controlled attempt's increment (for the fold rule, `fold_ahead`)
-            let attempted = self.load.target(&window) - self.path.t;
-            let attempt = match self.crossing.as_mut() {
-                Some(arc) => arc.attempt(self.model, solvers, &window, scales),
-                None => self.load.attempt(self.model, solvers, &window, scales),
-            };
-            let attempt_seconds = started.elapsed().as_secs_f64();
-            self.breakpoints = breakpoints;
-            let committed_before = self.summary.increments;
-            let flow = match attempt {
-                Attempt::Converged(report) => {
-                    let flow = self.converged(si, report, via)?;
-                    if self.summary.increments == committed_before {
-                        // rolled back as a jump
-                        self.summary.discarded_attempt_seconds += attempt_seconds;
-                    }
-                    flow
-                }
-                Attempt::Failed(failure) => {
-                    self.summary.discarded_attempt_seconds += attempt_seconds;
-                    self.failed(si, &failure, attempted)?
-                }
-                Attempt::OutsideWindow => {
-                    self.crossing = None;
-                    self.path.arc_blocked = true;
-                    self.load.after_detour(step.end_time - self.path.t);
-                    Flow::Continue
-                }
+            let (t, dt, crossing) = (self.path.t, self.load.dt, self.crossing.is_some());
+            let flow = match self.path.policy.before_attempt(crossing, t, dt, &step.incrementation) {
+                Some(decision) => self.carry_out(si, decision)?,
+                None => self.attempt(si, step_start)?,
             };
             match flow {
                 Flow::Continue => {}
-                Flow::StepDone => return Ok(None),
+                Flow::StepDone => break,
                 Flow::Stop(message) => return Ok(Some(Ending::Failed(message))),
                 Flow::Interrupted => return Ok(Some(Ending::Interrupted)),
             }
@@ -572,6 +448,53 @@ impl Driver<'_> {
             self.summary.warnings.extend(warning);
         }
         Ok(None)
+    }
+
+    /// One attempt of the active control (a crossing under way, else load control) from the
+    /// committed state, and what follows from it.
+    fn attempt(&mut self, si: usize, step_start: f64) -> Result<Flow> {
+        let step = &self.plan.steps[si];
+        let breakpoints = std::mem::take(&mut self.breakpoints);
+        let window = StepWindow {
+            t: self.path.t,
+            step_start,
+            step_end: step.end_time,
+            t_end: self.t_end,
+            breakpoints: &breakpoints,
+        };
+        let scales = self.scales();
+        let solvers = Solvers { linear: &mut *self.linear, nonlinear: &mut *self.nonlinear };
+        let via = if self.crossing.is_some() { Via::Crossing } else { Via::LoadControl };
+        let started = Instant::now();
+        // the load-controlled attempt's increment (for the fold rule)
+        let attempted = self.load.target(&window) - self.path.t;
+        let attempt = match self.crossing.as_mut() {
+            Some(arc) => arc.attempt(self.model, solvers, &window, scales),
+            None => self.load.attempt(self.model, solvers, &window, scales),
+        };
+        let attempt_seconds = started.elapsed().as_secs_f64();
+        self.breakpoints = breakpoints;
+        let committed_before = self.summary.increments;
+        Ok(match attempt {
+            Attempt::Converged(report) => {
+                let flow = self.converged(si, report, via)?;
+                if self.summary.increments == committed_before {
+                    // rolled back as a jump
+                    self.summary.discarded_attempt_seconds += attempt_seconds;
+                }
+                flow
+            }
+            Attempt::Failed(failure) => {
+                self.summary.discarded_attempt_seconds += attempt_seconds;
+                self.failed(si, &failure, attempted)?
+            }
+            Attempt::OutsideWindow => {
+                self.crossing = None;
+                self.path.policy.crossing_handed_back();
+                self.load.after_detour(step.end_time - self.path.t);
+                Flow::Continue
+            }
+        })
     }
 
     /// A failed attempt (over `attempted`, when load-controlled): roll back, then cut the active
@@ -589,73 +512,39 @@ impl Driver<'_> {
         }
         self.load.forget();
         self.summary.cut_increments += 1;
-        self.path.cuts_since_commit += 1;
-        if let Some(arc) = self.crossing.as_mut() {
-            let cut = arc.cut(failure);
-            return self.after_cut(si, cut, failure);
-        }
-        if failure.is_no_convergence()
-            && let Some((residual, test)) = self.unbalanced_start.take()
-        {
-            let force = if self.plan.units.1.is_empty() { String::new() } else { format!(" {}", self.plan.units.1) };
-            let reason = format!(
-                "the initial state is out of equilibrium (residual {residual:.3e}{force} against the test's \
-                 {test:.3e}: e.g. an adhesive surface started inside its jump-in range), and the first increment \
-                 found no equilibrium near it ({failure})"
-            );
-            return self.snap(si, &reason);
-        }
-        let continuation = self.plan.continuation.filter(|c| self.path.cuts_since_commit >= c.after_cuts);
-        if let Some(continuation) = continuation
-            && !self.path.arc_blocked
-        {
-            let resume_after = self.load.first_failed_target.unwrap_or(self.path.t);
-            self.crossing =
-                self.path.last_converged.clone().and_then(|previous| continuation.start(previous, resume_after));
-            if self.crossing.is_some() {
+        self.path.policy.attempt_failed();
+        let step = &self.plan.steps[si];
+        let facts = FailureFacts {
+            failure,
+            t: self.path.t,
+            attempted,
+            crossing: self.crossing.is_some(),
+            continuation: self.plan.continuation,
+            crossing_can_start: self.path.last_converged.as_ref().is_some_and(PreviousIncrement::moved_forward),
+            resume_after: self.load.first_failed_target.unwrap_or(self.path.t),
+            incrementation: &step.incrementation,
+            force_unit: &self.plan.units.1,
+        };
+        let decision = self.path.policy.after_failure(&facts);
+        self.carry_out_after(si, decision, failure)
+    }
+
+    /// Carries out the policy's `decision` after the `failure` of an attempt.
+    fn carry_out_after(&mut self, si: usize, decision: Decision, failure: &IncrementFailure) -> Result<Flow> {
+        let cut = match decision {
+            Decision::CutCrossing => match self.crossing.as_mut() {
+                Some(arc) => arc.cut(failure),
+                None => self.load.cut(failure),
+            },
+            Decision::CutLoad => self.load.cut(failure),
+            Decision::StartCrossing { resume_after } => {
+                let continuation = self.plan.continuation.expect("a crossing starts with continuation on");
+                self.crossing =
+                    self.path.last_converged.clone().and_then(|previous| continuation.start(previous, resume_after));
                 return Ok(Flow::Continue);
             }
-        }
-        if self.path.crawling && self.crossing.is_none() {
-            let reason = format!("still crawling at t = {:.6} ({failure})", self.path.t);
-            return self.crawl_snap(si, &reason);
-        }
-        if let Some((dt, reason)) = self.fold_within_reach(si, attempted, failure) {
-            return self.snap_over(si, &reason, dt, false);
-        }
-        let cut = self.load.cut(failure);
-        self.after_cut(si, cut, failure)
-    }
-
-    /// Whether the failed load-controlled attempt over `attempted` and the last one that
-    /// stagnated place a fold within the next attempt's reach (see [`fold_ahead`]): then that
-    /// next increment, to snap over, and the reason.
-    fn fold_within_reach(&mut self, si: usize, attempted: f64, failure: &IncrementFailure) -> Option<(f64, String)> {
-        let IncrementFailure::Stagnated { residual, earlier, .. } = failure else { return None };
-        if self.plan.continuation.is_some() {
-            // the crossing takes the folds over (and locates them)
-            return None;
-        }
-        let later = (self.path.t + attempted, residual.min(*earlier));
-        let before = self.path.stagnated_attempt.replace(later)?;
-        let incrementation = &self.plan.steps[si].incrementation;
-        let next = attempted * incrementation.cut_factor;
-        let fold =
-            fold_ahead(self.path.t, before, later).filter(|d| d.abs() < next && next >= incrementation.minimum)?;
-        let reason = format!(
-            "a fold {fold:.2e} from t = {:.6}: two attempts stalled at residuals falling with their \
-             overshoot ({:.3e} at t = {:.6}, {:.3e} at {:.6})",
-            self.path.t, before.1, before.0, later.1, later.0
-        );
-        Some((next, reason))
-    }
-
-    fn after_cut(
-        &mut self,
-        si: usize,
-        cut: std::result::Result<String, String>,
-        failure: &IncrementFailure,
-    ) -> Result<Flow> {
+            other => return self.carry_out(si, other),
+        };
         match cut {
             Ok(what) => {
                 let text = format!("{}: {what} at t = {:.4} ({failure})", self.plan.steps[si].name, self.path.t);
@@ -664,38 +553,40 @@ impl Driver<'_> {
                 }
                 Ok(Flow::Continue)
             }
-            Err(message) => self.snap(si, &message),
+            Err(refused) => {
+                let reason = refused.reason(failure);
+                let decision = self.path.policy.snap(reason, self.path.t, &self.plan.steps[si].incrementation);
+                self.carry_out(si, decision)
+            }
         }
     }
 
-    /// Whether a converged load-controlled increment to `target` jumped to another branch, and
-    /// how: its displacements moved more than [`JUMP_RATIO`] times what the last increment's
-    /// rate predicts ("moved too far"), or they turned back against it (du . du_previous < 0)
-    /// although the load did not reverse (the increment started on no breakpoint; "turned
-    /// back"): a limit point passed inside one increment, after which Newton's iterations
-    /// carried the body onto another branch. Without continuation only the first counts, and
-    /// not for an increment that starts on a breakpoint (where the load's rate may change): a
-    /// body's motion also turns back on a smooth path (where an adhesive pull gives way to
-    /// contact pressure), and a snap is costlier than the crossing's step.
+    /// Carries out a snap or a stop the policy decided.
+    fn carry_out(&mut self, si: usize, decision: Decision) -> Result<Flow> {
+        match decision {
+            Decision::Snap { dt, crawl, reason, .. } => self.snap_over(si, &reason, dt, crawl),
+            Decision::Stop { reason } => Ok(Flow::Stop(reason)),
+            Decision::CutCrossing | Decision::CutLoad | Decision::StartCrossing { .. } => {
+                unreachable!("a cut or a crossing is carried out after a failure")
+            }
+        }
+    }
+
+    /// Whether a converged load-controlled increment to `target` jumped to another branch
+    /// ([`jumped`]), and how.
     fn jump(&self, target: f64, du: &[f64]) -> Option<&'static str> {
-        // arc length had to hand back to load control: load control goes on
-        if self.plan.continuation.is_some() && self.path.arc_blocked {
-            return None;
-        }
-        let previous = self.path.last_converged.as_ref().filter(|p| p.dt > 0.0 && target > self.path.t)?;
-        let (moved, moved_before) = (norm(du), norm(&previous.du));
-        let predicted = moved_before * (target - self.path.t) / previous.dt;
-        // round-off in a state that no longer moves (a separated body) is no jump
-        let noise = self.nonlinear.settings().tol_displacement * self.path.largest_displacement;
-        let continuation = self.plan.continuation.is_some();
-        let too_far =
-            (continuation || !self.at_breakpoint(self.path.t)) && predicted > 0.0 && moved > JUMP_RATIO * predicted;
-        let turned_back =
-            continuation && moved_before > noise && dot(du, &previous.du) < 0.0 && !self.at_breakpoint(self.path.t);
-        if !(moved > noise && (too_far || turned_back)) {
-            return None;
-        }
-        Some(if too_far { "moved too far" } else { "turned back" })
+        let previous = self.path.last_converged.as_ref()?;
+        jumped(&JumpFacts {
+            moved: norm(du),
+            moved_before: norm(&previous.du),
+            dt: target - self.path.t,
+            dt_before: previous.dt,
+            turned: dot(du, &previous.du) < 0.0,
+            noise: self.nonlinear.settings().tol_displacement * self.path.largest_displacement,
+            continuation: self.plan.continuation.is_some(),
+            from_breakpoint: self.at_breakpoint(self.path.t),
+            arc_blocked: self.path.policy.arc_blocked(),
+        })
     }
 
     /// After a jump (see [`Self::jump`]) to `target`: the increment is rolled back, and the
@@ -709,7 +600,7 @@ impl Driver<'_> {
         };
         self.model.rollback();
         self.summary.cut_increments += 1;
-        self.path.cuts_since_commit += 1;
+        self.path.policy.attempt_failed();
         self.crossing = self.path.last_converged.clone().and_then(|previous| continuation.start(previous, target));
         let next = if self.crossing.is_some() { "crossing the limit point" } else { "load control goes on" };
         let text = format!("the increment to t = {target:.6} jumped ({why}): rolled back, {next}");
@@ -749,29 +640,23 @@ impl Driver<'_> {
             self.load.remember(du, 0.0, true);
             self.load.set_increment(step.incrementation.initial);
         } else {
-            self.path.snaps_in_a_row = 0;
-            self.path.crawling = false;
-            let small = target - self.path.t < CRAWL_FRACTION * step.incrementation.maximum;
-            self.path.small_commits_in_a_row =
-                if via == Via::LoadControl && small { self.path.small_commits_in_a_row + 1 } else { 0 };
             self.path.last_converged = Some(PreviousIncrement { du: du.clone(), dt: target - self.path.t });
             self.load.remember(du, target - self.path.t, reversal);
         }
-        self.path.arc_blocked = false;
         if resume {
             // past the point where load control failed, moving forward again
             self.crossing = None;
             self.load.set_increment(target - self.path.t);
         }
+        let small = target - self.path.t < CRAWL_FRACTION * step.incrementation.maximum;
         self.model.commit();
-        self.unbalanced_start = None;
         self.tangent.committed();
         self.path.largest_displacement = self.path.largest_displacement.max(norm(&self.model.displacement));
         self.path.t = target;
         self.add_report(&report);
         let plastic_dissipation = self.model.dissipation();
         let context = CommitContext {
-            cuts_since_commit: self.path.cuts_since_commit,
+            cuts_since_commit: self.path.policy.cuts_since_commit(),
             limit_point,
             by_arc_length,
             plastic_dissipation,
@@ -779,10 +664,7 @@ impl Driver<'_> {
             snap_dissipation: self.path.snap_dissipation,
         };
         let (events, separated) = self.tracker.update(self.model, context, step.until_separated);
-        self.path.cuts_since_commit = 0;
-        if via == Via::Settling || self.path.stagnated_attempt.is_some_and(|(target, _)| target <= self.path.t) {
-            self.path.stagnated_attempt = None;
-        }
+        self.path.policy.committed(self.path.t, via == Via::Settling, via == Via::LoadControl, small);
         self.path.since_output += 1;
         let at_end = self.path.t >= step.end_time - 1e-12 * self.t_end;
         let frame_due = (step.output_every > 0 && self.path.since_output >= step.output_every) || at_end || separated;
@@ -846,15 +728,15 @@ impl Driver<'_> {
         s.snap_dissipation = self.path.snap_dissipation;
         s.max_equivalent_plastic_strain = self.model.max_material_output("equivalent_plastic_strain");
         (s.status, s.message) = match ending {
-            None => ("completed".into(), None),
-            Some(Ending::Failed(message)) => ("failed".into(), Some(message)),
+            None => (RunStatus::Completed, None),
+            Some(Ending::Failed(message)) => (RunStatus::Failed, Some(message)),
             Some(Ending::Interrupted) => {
                 let inside = self.snap_in_progress.as_ref().map_or(String::new(), |snap| {
                     let steps = snap.flow.as_ref().map_or(0, |f| f.report.steps);
                     format!(", inside the snap to t = {} after {steps} damped flow steps", snap.target)
                 });
                 (
-                    "interrupted".into(),
+                    RunStatus::Interrupted,
                     Some(format!(
                         "interrupted at t = {}{inside}; every committed increment is in history.csv and the VTK series",
                         self.path.t

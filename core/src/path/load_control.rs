@@ -11,7 +11,7 @@
 //! a failed attempt or a snap, none (the committed state).
 
 use super::step::Incrementation;
-use super::{Attempt, PathControl, Solvers, StepWindow};
+use super::{Attempt, Cut, CutRefused, PathControl, Solvers, StepWindow};
 use crate::model::Model;
 use crate::nonlinear::{IncrementFailure, IncrementReport, ReferenceScales};
 
@@ -202,12 +202,12 @@ impl PathControl for LoadControl {
         }
     }
 
-    fn cut(&mut self, failure: &IncrementFailure) -> Result<String, String> {
+    fn cut(&mut self, _failure: &IncrementFailure) -> Result<Cut, CutRefused> {
         self.dt *= self.incrementation.cut_factor;
         if self.dt < self.incrementation.minimum {
-            Err(format!("increment below the minimum {:.3e} after: {failure}", self.incrementation.minimum))
+            Err(CutRefused::BelowMinimum { minimum: self.incrementation.minimum })
         } else {
-            Ok(format!("cut to dt = {:.2e}", self.dt))
+            Ok(Cut::Increment(self.dt))
         }
     }
 }
@@ -253,7 +253,7 @@ mod tests {
         let message = loop {
             match control.cut(&failure) {
                 Ok(_) => cuts += 1,
-                Err(m) => break m,
+                Err(refused) => break refused.reason(&failure),
             }
         };
         // 0.1 * 0.25^k >= 1e-3 for k = 0..3

@@ -10,6 +10,7 @@ mod arc_length_control;
 mod dissipation_control;
 pub mod driver;
 mod load_control;
+pub mod policy;
 pub mod step;
 pub mod tangent_choice;
 
@@ -71,8 +72,64 @@ pub trait PathControl {
         window: &StepWindow<'_>,
         scales: ReferenceScales,
     ) -> Attempt;
-    /// After a failed attempt: makes the next one smaller, or says why it cannot.
-    fn cut(&mut self, failure: &IncrementFailure) -> Result<String, String>;
+    /// After a failed attempt (`failure`): makes the next one smaller, or says why it cannot.
+    fn cut(&mut self, failure: &IncrementFailure) -> Result<Cut, CutRefused>;
+}
+
+/// How a control shortened its next attempt.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Cut {
+    /// Load control's pseudo-time increment.
+    Increment(f64),
+    /// Arc length's length.
+    ArcLength(f64),
+    /// Dissipation control's energy per increment; `emptied`: the last attempt found nothing
+    /// left to damage.
+    Energy { energy: f64, emptied: bool },
+}
+
+impl std::fmt::Display for Cut {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Cut::Increment(dt) => write!(f, "cut to dt = {dt:.2e}"),
+            Cut::ArcLength(ds) => write!(f, "arc length cut to {ds:.2e}"),
+            Cut::Energy { energy, emptied: false } => write!(f, "energy per increment cut to {energy:.2e}"),
+            Cut::Energy { energy, emptied: true } => {
+                write!(f, "energy per increment cut to {energy:.2e} (nothing left to damage at the last one)")
+            }
+        }
+    }
+}
+
+/// Why a control cannot shorten its next attempt: the path snaps instead.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CutRefused {
+    /// Load control's increment would fall below the step's minimum.
+    BelowMinimum { minimum: f64 },
+    /// Arc length would fall below 1e-4 of the crossing's first.
+    ArcLengthStalled { arc_length: f64 },
+    /// Dissipation control has no energy per increment yet (its first attempt failed).
+    DissipationNotStarted,
+    /// The energy per increment would fall below 1e-4 of the crossing's first.
+    DissipationStalled { energy: f64 },
+}
+
+impl CutRefused {
+    /// Why, after `failure`, in the run's words.
+    pub fn reason(&self, failure: &IncrementFailure) -> String {
+        match self {
+            CutRefused::BelowMinimum { minimum } => {
+                format!("increment below the minimum {minimum:.3e} after: {failure}")
+            }
+            CutRefused::ArcLengthStalled { arc_length } => {
+                format!("arc-length continuation stalled (arc length {arc_length:.3e}) after: {failure}")
+            }
+            CutRefused::DissipationNotStarted => format!("dissipation control could not start: {failure}"),
+            CutRefused::DissipationStalled { energy } => {
+                format!("dissipation control stalled (energy per increment {energy:.3e}) after: {failure}")
+            }
+        }
+    }
 }
 
 /// A control that takes over from load control to cross a limit point, and hands back.

@@ -3,7 +3,7 @@
 //! and the contact resistance's hysteresis: its value at the same force on loading and on
 //! unloading.
 
-use super::summary::RunSummary;
+use super::summary::{CycleSummary, ResistanceAtForce, RunSummary};
 use super::{CommittedIncrement, Observer};
 use crate::error::Result;
 use crate::model::Model;
@@ -30,46 +30,6 @@ pub struct InterfaceSample {
     /// The snaps' dissipation so far (the whole model's,
     /// [`super::CommittedIncrement::snap_dissipation`]).
     pub snap_dissipation: f64,
-}
-
-/// The key numbers of one load cycle.
-#[derive(Debug, Clone, Serialize, Deserialize, Default, PartialEq)]
-pub struct CycleSummary {
-    /// 1-based.
-    pub cycle: usize,
-    pub max_approach: f64,
-    pub max_force: f64,
-    /// Most tensile force of the cycle (negative; 0 if never adhesive).
-    pub most_tensile_force: f64,
-    /// The interface let go by the cycle's end ([`released`]).
-    pub separated: bool,
-    /// The most tensile force when the cycle separated, else None.
-    pub pull_off_force: Option<f64>,
-    pub max_contact_area: f64,
-    pub contact_resistance_at_max_force: Option<f64>,
-    /// Work the flat does against adhesion to open the contact: the integral of -force over the
-    /// retraction where the force is tensile, sum of max(-F, 0) |d approach| while the approach
-    /// decreases (the adhesion energy of the cycle).
-    pub opening_work: f64,
-    /// Net work of the flat over the cycle, integral of force d(approach).
-    pub work_of_flat: f64,
-    /// The continuum's plastic dissipation over the cycle (the whole model's).
-    pub plastic_dissipation: f64,
-    /// The snaps' dissipation over the cycle (the whole model's). With the plastic dissipation
-    /// and the laws' own (hysteresis, viscosity) it balances the flat's work over a cycle that
-    /// ends in the state it started from: for an elastic body with a conservative law, the
-    /// work of the flat is the snaps' dissipation.
-    pub snap_dissipation: f64,
-}
-
-/// The resistance at one force level on loading and on unloading of the first cycle.
-#[derive(Debug, Clone, Serialize, Deserialize, Default, PartialEq)]
-pub struct ResistanceAtForce {
-    /// The level as a fraction of the cycle's maximum force.
-    pub fraction_of_max_force: f64,
-    pub force: f64,
-    pub loading: Option<f64>,
-    pub unloading: Option<f64>,
 }
 
 /// An interface has let go at a state with `n_contact` points in contact and `force`, after a

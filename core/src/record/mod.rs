@@ -13,12 +13,12 @@ pub mod plastic_drawing;
 pub mod summary;
 mod vtk_series;
 
-pub use cycles::{CycleSummary, CyclesWriter, ResistanceAtForce};
+pub use cycles::CyclesWriter;
 pub use events::EventsRecorder;
 pub use history::HistoryRecorder;
 pub use interface_tracker::{InterfaceEvent, InterfaceTracker};
 pub use message_log::MessageLog;
-pub use summary::{InterfaceSummary, RunSummary, SummaryWriter};
+pub use summary::{CycleSummary, InterfaceSummary, ResistanceAtForce, RunStatus, RunSummary, SnapSolve, SummaryWriter};
 pub use vtk_series::VtkRecorder;
 
 use crate::error::Result;

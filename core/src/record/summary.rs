@@ -1,7 +1,6 @@
 //! `summary.json`: how the run went and each interface's key numbers; written when the run
 //! starts (status "running") and again when it ends, failed and interrupted runs included.
 
-use super::cycles::{CycleSummary, ResistanceAtForce};
 use super::{CommittedIncrement, Observer};
 use crate::error::Result;
 use crate::model::Model;
@@ -9,13 +8,127 @@ use crate::output::write_atomically;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
+/// The key numbers of one load cycle.
+#[derive(Debug, Clone, Serialize, Deserialize, Default, PartialEq)]
+pub struct CycleSummary {
+    /// 1-based.
+    pub cycle: usize,
+    pub max_approach: f64,
+    pub max_force: f64,
+    /// Most tensile force of the cycle (negative; 0 if never adhesive).
+    pub most_tensile_force: f64,
+    /// The interface let go by the cycle's end ([`super::cycles::released`]).
+    pub separated: bool,
+    /// The most tensile force when the cycle separated, else None.
+    pub pull_off_force: Option<f64>,
+    pub max_contact_area: f64,
+    pub contact_resistance_at_max_force: Option<f64>,
+    /// Work the flat does against adhesion to open the contact: the integral of -force over the
+    /// retraction where the force is tensile, sum of max(-F, 0) |d approach| while the approach
+    /// decreases (the adhesion energy of the cycle).
+    pub opening_work: f64,
+    /// Net work of the flat over the cycle, integral of force d(approach).
+    pub work_of_flat: f64,
+    /// The continuum's plastic dissipation over the cycle (the whole model's).
+    pub plastic_dissipation: f64,
+    /// The snaps' dissipation over the cycle (the whole model's). With the plastic dissipation
+    /// and the laws' own (hysteresis, viscosity) it balances the flat's work over a cycle that
+    /// ends in the state it started from: for an elastic body with a conservative law, the
+    /// work of the flat is the snaps' dissipation.
+    pub snap_dissipation: f64,
+}
+
+/// The resistance at one force level on loading and on unloading of the first cycle.
+#[derive(Debug, Clone, Serialize, Deserialize, Default, PartialEq)]
+pub struct ResistanceAtForce {
+    /// The level as a fraction of the cycle's maximum force.
+    pub fraction_of_max_force: f64,
+    pub force: f64,
+    pub loading: Option<f64>,
+    pub unloading: Option<f64>,
+}
+
+/// How a run stands: "running" from its start until it ends "completed", "failed" (with the
+/// reason in `message`) or "interrupted".
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RunStatus {
+    #[default]
+    Running,
+    Completed,
+    Failed,
+    Interrupted,
+}
+
+impl RunStatus {
+    /// The name `summary.json` gives it.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            RunStatus::Running => "running",
+            RunStatus::Completed => "completed",
+            RunStatus::Failed => "failed",
+            RunStatus::Interrupted => "interrupted",
+        }
+    }
+}
+
+impl std::fmt::Display for RunStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl PartialEq<&str> for RunStatus {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_str() == *other
+    }
+}
+
+/// How the run's snaps were solved (`summary.json`'s `snap_method`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum SnapSolve {
+    /// By descent ([`crate::nonlinear::settle`]).
+    #[default]
+    #[serde(rename = "settle")]
+    Settle,
+    /// Along the damped flow ([`crate::nonlinear::damped_flow`]).
+    #[serde(rename = "damped-flow")]
+    DampedFlow,
+    /// By descent, and along the damped flow where a descent found no stable state.
+    #[serde(rename = "settle, the damped flow where a descent failed")]
+    SettleThenFlow,
+}
+
+impl SnapSolve {
+    /// The name `summary.json` gives it.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            SnapSolve::Settle => "settle",
+            SnapSolve::DampedFlow => "damped-flow",
+            SnapSolve::SettleThenFlow => "settle, the damped flow where a descent failed",
+        }
+    }
+}
+
+impl std::fmt::Display for SnapSolve {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl PartialEq<&str> for SnapSolve {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_str() == *other
+    }
+}
+
 /// What `summary.json` holds.
 #[derive(Debug, Clone, Serialize, Deserialize, Default)]
 pub struct RunSummary {
     pub case: String,
     /// The unit of every number below, from the case's length and force units.
     pub units: Units,
-    pub status: String,
+    pub status: RunStatus,
     pub message: Option<String>,
     pub final_time: f64,
     pub increments: usize,
@@ -27,8 +140,8 @@ pub struct RunSummary {
     /// Increments where the path had no nearby equilibrium and the model snapped to a stable
     /// one (jump-in, pull-off under displacement control), by `snap_method`.
     pub snaps: usize,
-    /// How snaps are solved: "settle" (descent) or "damped-flow".
-    pub snap_method: String,
+    /// How snaps are solved.
+    pub snap_method: SnapSolve,
     pub newton_iterations: usize,
     /// Numeric factorizations of the tangent.
     pub factorizations: usize,
@@ -252,7 +365,28 @@ impl Observer for SummaryWriter {
 
 #[cfg(test)]
 mod tests {
-    use super::Units;
+    use super::{RunStatus, SnapSolve, Units};
+
+    /// The names `summary.json` gives the status and the snap method, read back.
+    #[test]
+    fn status_and_snap_method_keep_their_json_names() {
+        for (status, name) in [
+            (RunStatus::Running, "running"),
+            (RunStatus::Completed, "completed"),
+            (RunStatus::Failed, "failed"),
+            (RunStatus::Interrupted, "interrupted"),
+        ] {
+            assert_eq!(serde_json::to_string(&status).unwrap(), format!("\"{name}\""));
+            assert_eq!(serde_json::from_str::<RunStatus>(&format!("\"{name}\"")).unwrap(), status);
+            assert_eq!(status, name);
+        }
+        for method in [SnapSolve::Settle, SnapSolve::DampedFlow, SnapSolve::SettleThenFlow] {
+            let json = serde_json::to_string(&method).unwrap();
+            assert_eq!(json, format!("\"{}\"", method.as_str()));
+            assert_eq!(serde_json::from_str::<SnapSolve>(&json).unwrap(), method);
+        }
+        assert!(serde_json::from_str::<RunStatus>("\"done\"").is_err());
+    }
 
     #[test]
     fn units_follow_from_length_and_force() {

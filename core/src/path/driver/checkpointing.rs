@@ -102,7 +102,7 @@ impl Driver<'_> {
         let (when, increments) = self.last_checkpoint;
         let due = self.summary.increments > increments
             && self.crossing.is_none()
-            && self.path.cuts_since_commit == 0
+            && self.path.policy.cuts_since_commit() == 0
             && when.elapsed() >= plan.interval;
         if due { self.write_checkpoint(None) } else { Ok(()) }
     }
@@ -127,7 +127,7 @@ impl Driver<'_> {
         if matches!(ending, Some(Ending::Failed(_))) {
             // resumed with other settings: go on as from a step's start
             driver.load.restart_at(self.plan.steps[self.path.step].incrementation.initial);
-            (driver.path.cuts_since_commit, driver.path.snaps_in_a_row, driver.path.stagnated_attempt) = (0, 0, None);
+            driver.path.policy = driver.path.policy.for_failed_run();
         }
         let record =
             Checkpoint { fingerprint: plan.fingerprint.clone(), model: self.model.saved_state(), driver, observers };
@@ -202,7 +202,7 @@ impl Driver<'_> {
             precision_fallbacks: d.summary.double_precision_refactorizations,
         };
         self.summary = resumed_summary(d.summary, &self.summary);
-        self.unbalanced_start = None;
+        self.path.policy.unbalanced_start(None);
         self.snap_in_progress = d.snap;
         self.last_checkpoint = (Instant::now(), self.summary.increments);
         for o in self.observers.iter_mut() {
@@ -216,10 +216,10 @@ impl Driver<'_> {
 /// process's setup (sizes of the factor, the snap method, the output folder) from `fresh`.
 fn resumed_summary(saved: RunSummary, fresh: &RunSummary) -> RunSummary {
     RunSummary {
-        status: fresh.status.clone(),
+        status: fresh.status,
         message: None,
         factor_nnz: fresh.factor_nnz,
-        snap_method: fresh.snap_method.clone(),
+        snap_method: fresh.snap_method,
         output_directory: fresh.output_directory.clone(),
         ..saved
     }

@@ -11,7 +11,7 @@
 //! model's committed state, which is the flow's last committed step. A run resumed from it
 //! goes on with the same flow (`Driver::resume_snap`), as if it had not stopped.
 
-use super::{Driver, Flow, MAX_SNAPS_WITHOUT_PROGRESS, SnapMethod, Via};
+use super::{Driver, Flow, SnapMethod, Via};
 use crate::error::{CoreError, Result};
 use crate::nonlinear::damped_flow::follow_damped_flow;
 use crate::nonlinear::damped_flow::{
@@ -21,7 +21,7 @@ use crate::nonlinear::settle::{Settled, settle};
 use crate::nonlinear::{IncrementFailure, IncrementReport};
 use crate::path::StepWindow;
 use crate::problem::NonlinearProblem;
-use crate::record::summary::Units;
+use crate::record::summary::{SnapSolve, Units};
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::Ordering;
 use std::time::Instant;
@@ -63,35 +63,11 @@ enum Snapped {
 }
 
 impl Driver<'_> {
-    /// Settles one initial increment ahead of a crawl (see [`super::CRAWL_COMMITS`]); the path
-    /// counts as still crawling after it unless it reached a breakpoint.
-    pub(super) fn crawl_snap(&mut self, si: usize, reason: &str) -> Result<Flow> {
-        self.snap_over(si, reason, self.plan.steps[si].incrementation.initial, true)
-    }
-
-    /// Neither control can go on: settle just past the committed time (see the module
-    /// documentation) and commit the snapped state, or stop with both reasons. Where
-    /// [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row at the minimum increment found no path
-    /// onward (load control could not go on from the states they reached), the snap goes one
-    /// initial increment ahead, as past a crawl.
-    pub(super) fn snap(&mut self, si: usize, reason: &str) -> Result<Flow> {
-        let incrementation = &self.plan.steps[si].incrementation;
-        let stuck = self.path.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS;
-        let dt = if stuck { incrementation.initial } else { incrementation.minimum };
-        self.snap_over(si, reason, dt, false)
-    }
-
     /// Settles at the target `dt` past the committed time (clipped to the step and the next
-    /// breakpoint) and commits it, or stops with `reason` and why settling failed. Errors are
-    /// those of committing (writing the outputs and checkpoints).
+    /// breakpoint) and commits it, or stops with `reason` and why settling failed (the policy
+    /// decided the snap: [`crate::path::policy::PathPolicy`]). Errors are those of committing
+    /// (writing the outputs and checkpoints).
     pub(super) fn snap_over(&mut self, si: usize, reason: &str, dt: f64, crawl: bool) -> Result<Flow> {
-        if self.path.snaps_in_a_row >= MAX_SNAPS_WITHOUT_PROGRESS && dt <= self.plan.steps[si].incrementation.minimum {
-            self.path.crawling &= !crawl;
-            return Ok(Flow::Stop(format!(
-                "{reason}; {MAX_SNAPS_WITHOUT_PROGRESS} snaps in a row found no path onward from t = {:.6}",
-                self.path.t
-            )));
-        }
         let step = &self.plan.steps[si];
         self.crossing = None;
         self.model.rollback();
@@ -170,7 +146,7 @@ impl Driver<'_> {
             // commit's time
             self.model.rollback();
             self.model.set_time(target);
-            self.summary.snap_method = "settle, the damped flow where a descent failed".into();
+            self.summary.snap_method = SnapSolve::SettleThenFlow;
             solved = self.solve_snap_by(&name, target, Some(settings))?;
         }
         if matches!(solved, Snapped::Interrupted) {
@@ -189,9 +165,7 @@ impl Driver<'_> {
         let flow = match solved {
             Snapped::Settled(report, _, released) => {
                 self.path.snap_dissipation += released;
-                // a snap past the minimum increment moved the load on: progress
-                self.path.snaps_in_a_row =
-                    if snap.dt > self.plan.steps[si].incrementation.minimum { 0 } else { self.path.snaps_in_a_row + 1 };
+                self.path.policy.snapped(snap.dt, &self.plan.steps[si].incrementation);
                 self.summary.snaps += 1;
                 self.converged(si, report, Via::Settling)?
             }
@@ -199,7 +173,8 @@ impl Driver<'_> {
             Snapped::Interrupted => Flow::Interrupted,
         };
         if snap.crawl {
-            self.path.crawling = matches!(flow, Flow::Continue) && !self.at_breakpoint(self.path.t);
+            let at_breakpoint = self.at_breakpoint(self.path.t);
+            self.path.policy.after_crawl_snap(matches!(flow, Flow::Continue), at_breakpoint);
         }
         Ok(flow)
     }
