@@ -20,6 +20,7 @@ pub mod report;
 pub mod resources;
 pub mod resume;
 pub mod run;
+pub mod surface;
 pub mod sweep;
 
 pub use error::StictionError;

@@ -144,6 +144,84 @@ enum Command {
         #[command(subcommand)]
         command: PluginCommand,
     },
+    /// Rough surfaces as height maps: make a synthetic one, measure one.
+    Surface {
+        #[command(subcommand)]
+        command: SurfaceCommand,
+    },
+}
+
+#[derive(Subcommand)]
+enum SurfaceCommand {
+    /// Make a self-affine rough surface by the random-phase spectral method (a spectrum flat
+    /// below the roll-off wavelength, falling as q^(-2 (1 + H)) to the cutoff wavelength, zero
+    /// beyond; random phases from the seed) and write it as a Gwyddion Simple Field file.
+    Generate {
+        /// The `.gsf` file to write.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// The Hurst exponent H (0 < H < 1).
+        #[arg(long)]
+        hurst: f64,
+        /// The rms height (give this or --rms-slope).
+        #[arg(long, required_unless_present = "rms_slope", conflicts_with = "rms_slope")]
+        rms_height: Option<f64>,
+        /// The rms slope |grad z| (by central differences).
+        #[arg(long)]
+        rms_slope: Option<f64>,
+        /// The side of the square map.
+        #[arg(long)]
+        size: f64,
+        /// Pixels along each side (even, at least 8).
+        #[arg(long)]
+        pixels: usize,
+        /// The roll-off wavelength (default: a quarter of the size).
+        #[arg(long)]
+        rolloff: Option<f64>,
+        /// The shortest wavelength (default: four pixels).
+        #[arg(long)]
+        cutoff: Option<f64>,
+        /// The seed of the random phases.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// The unit of the lengths and heights, written in the file.
+        #[arg(long, default_value = "nm")]
+        unit: String,
+    },
+    /// Measure a height map (`.gsf`, or text with --columns or --pixel-size): rms height and
+    /// slope, the Hurst exponent from its spectrum, and its summits (pixels higher than their 8
+    /// neighbours) with their density, height spread and radii; with --out, summits.csv,
+    /// surface-stats.json, top-view.png and summit-heights.png/.svg.
+    Stats {
+        /// The height map.
+        file: PathBuf,
+        /// A text map of x y z rows on a regular grid.
+        #[arg(long, conflicts_with = "pixel_size")]
+        columns: bool,
+        /// A text map of rows of heights, with this pixel size.
+        #[arg(long)]
+        pixel_size: Option<f64>,
+        /// The unit of a text map's lengths and heights.
+        #[arg(long, default_value = "nm")]
+        unit: String,
+        /// Summits lower than this above the mean height are left out (default: none).
+        #[arg(long, allow_negative_numbers = true)]
+        threshold: Option<f64>,
+        /// Of two summits closer than this, the lower is left out.
+        #[arg(long, default_value_t = 0.0)]
+        min_spacing: f64,
+        /// The wavelengths the Hurst exponent is fitted between, "shortest,longest" (default: 8
+        /// pixels to an eighth of the map's side).
+        #[arg(long, value_delimiter = ',', num_args = 2)]
+        fit_wavelengths: Option<Vec<f64>>,
+        /// No window before the transform: for a periodic map (a generated one); a measured
+        /// map takes the Hann window (the default).
+        #[arg(long)]
+        periodic: bool,
+        /// Folder for summits.csv, surface-stats.json and the plots.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 #[derive(Subcommand)]
@@ -288,6 +366,120 @@ fn plugin_check(law: &str, params: &[String], config: Option<PathBuf>, gap_scale
     }
     println!("{} passed, {} failed", checks - failed, failed);
     if failed == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) }
+}
+
+/// `stiction surface generate` and `stats`.
+fn surface(command: SurfaceCommand) -> ExitCode {
+    use stiction::surface::{StatsOptions, SurfaceError};
+    use stiction_interfaces::height_map::generate::{Amplitude, SelfAffine};
+    use stiction_interfaces::height_map::spectrum::Window;
+    use stiction_interfaces::height_map::summits::SummitRule;
+    use stiction_interfaces::height_map::text::TextLayout;
+    let result = match command {
+        SurfaceCommand::Generate {
+            output,
+            hurst,
+            rms_height,
+            rms_slope,
+            size,
+            pixels,
+            rolloff,
+            cutoff,
+            seed,
+            unit,
+        } => {
+            let amplitude = match (rms_height, rms_slope) {
+                (Some(h), _) => Amplitude::RmsHeight(h),
+                (None, Some(s)) => Amplitude::RmsSlope(s),
+                (None, None) => unreachable!("clap asks for one"),
+            };
+            let spec = SelfAffine {
+                hurst,
+                amplitude,
+                size,
+                pixels,
+                rolloff: rolloff.unwrap_or(size / 4.0),
+                cutoff: cutoff.unwrap_or(4.0 * size / pixels.max(1) as f64),
+                seed,
+                unit,
+            };
+            stiction::surface::generate(&spec, &output).map(|map| {
+                println!(
+                    "wrote {}: {} x {} pixels of {} {u}, rms height {:.4} {u}, rms slope {:.4}",
+                    output.display(),
+                    map.nx,
+                    map.ny,
+                    map.dx,
+                    map.rms_height(),
+                    map.rms_slope(),
+                    u = spec.unit
+                );
+            })
+        }
+        SurfaceCommand::Stats {
+            file,
+            columns,
+            pixel_size,
+            unit,
+            threshold,
+            min_spacing,
+            fit_wavelengths,
+            periodic,
+            out,
+        } => {
+            let layout = match (columns, pixel_size) {
+                (true, _) => Some(TextLayout::Columns),
+                (false, Some(d)) => Some(TextLayout::Matrix { dx: d, dy: d }),
+                (false, None) => None,
+            };
+            let options = StatsOptions {
+                layout,
+                unit,
+                rule: SummitRule { threshold: threshold.unwrap_or(f64::NEG_INFINITY), min_spacing },
+                fit_wavelengths: fit_wavelengths.map(|w| (w[0], w[1])),
+                window: if periodic { Window::None } else { Window::Hann },
+            };
+            stiction::surface::stats(&file, &options, out.as_deref()).map(|r| print_stats(&r))
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            let e: SurfaceError = e;
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}
+
+fn print_stats(r: &stiction::surface::StatsReport) {
+    let (l, h) = (&r.length_unit, &r.height_unit);
+    println!(
+        "{}: {} x {} pixels of {} x {} {l}",
+        r.file.display(),
+        r.pixels.0,
+        r.pixels.1,
+        r.pixel_size.0,
+        r.pixel_size.1
+    );
+    if let Some(s) = &r.statistics {
+        println!("  rms height {:.4} {h}, rms slope {:.4}", s.rms_height, s.rms_slope);
+        println!(
+            "  {} summits: density {:.4e} per {l}^2, height {:.4} +- {:.4} {h} above the mean, mean radius {:.4} {l}",
+            s.summits, s.density, s.mean_summit_height, s.summit_height_std, s.mean_radius
+        );
+        println!(
+            "  density x summit-height std x mean radius: {:.4} (McCool's {})",
+            s.density_std_radius, r.mccool_product
+        );
+    }
+    match &r.hurst {
+        Some(f) => println!(
+            "  Hurst exponent {:.3} +- {:.3} (spectrum over wavelengths {} to {} {l}, {} rings)",
+            f.hurst, f.standard_error, f.shortest, f.longest, f.rings
+        ),
+        None => println!("  Hurst exponent: fewer than 3 spectrum rings between the fit's wavelengths"),
+    }
 }
 
 fn calibrate(table: &std::path::Path, output: &std::path::Path, lo: usize, uo: usize, w: Option<f64>) -> ExitCode {
@@ -510,6 +702,7 @@ fn main() -> ExitCode {
         Command::Plugin { command: PluginCommand::Check { law, params, config_file, gap_scale, dirs } } => {
             return plugin_check(&law, &params, config_file, gap_scale, &dirs);
         }
+        Command::Surface { command } => return surface(command),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -41,3 +41,85 @@ fn exits_with_status_2_on_bad_input_and_0_on_success() {
     assert_eq!(run.status.code(), Some(0), "{}", String::from_utf8_lossy(&run.stderr));
     assert!(out.join("summary.json").exists() && out.join("lame-sphere-axisym.pvd").exists());
 }
+
+/// `surface generate` then `surface stats --periodic`: the map read back has the rms height
+/// asked for and, from its spectrum, the Hurst exponent, within 5%; the summits file and the
+/// statistics are written.
+#[test]
+fn a_generated_surface_measures_back_to_its_rms_height_and_hurst_exponent() {
+    let exe = env!("CARGO_BIN_EXE_stiction");
+    let out = root().join("target").join("test-out").join("surface");
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out).unwrap();
+    let map = out.join("map.gsf");
+    let made = Command::new(exe)
+        .args(["surface", "generate", "-o", map.to_str().unwrap(), "--hurst", "0.7", "--rms-height", "2.5"])
+        .args(["--size", "2048", "--pixels", "512", "--rolloff", "512", "--cutoff", "16", "--seed", "11"])
+        .output()
+        .unwrap();
+    assert_eq!(made.status.code(), Some(0), "{}", String::from_utf8_lossy(&made.stderr));
+    let stats = Command::new(exe)
+        .args(["surface", "stats", map.to_str().unwrap(), "--periodic", "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(stats.status.code(), Some(0), "{}", String::from_utf8_lossy(&stats.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("surface-stats.json")).unwrap()).unwrap();
+    let rms = report["statistics"]["rms_height"].as_f64().unwrap();
+    let hurst = report["hurst"]["hurst"].as_f64().unwrap();
+    assert!((rms / 2.5 - 1.0).abs() < 0.05, "rms height {rms}");
+    assert!((hurst / 0.7 - 1.0).abs() < 0.05, "Hurst exponent {hurst}");
+    let summits = std::fs::read_to_string(out.join("summits.csv")).unwrap();
+    assert_eq!(summits.lines().count() - 1, report["statistics"]["summits"].as_u64().unwrap() as usize);
+    assert!(out.join("top-view.png").exists() && out.join("summit-heights.svg").exists());
+}
+
+/// Bad height maps: exit 2 naming the file and what is wrong, never a panic.
+#[test]
+fn a_bad_height_map_is_refused_naming_the_file_and_the_fault() {
+    let exe = env!("CARGO_BIN_EXE_stiction");
+    let out = root().join("target").join("test-out").join("surface-bad");
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out).unwrap();
+    let write = |name: &str, bytes: &[u8]| {
+        let path = out.join(name);
+        std::fs::write(&path, bytes).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let gsf = |x_real: &str| {
+        let mut bytes = format!("Gwyddion Simple Field 1.0\nXRes = 4\nYRes = 4\nXReal = {x_real}\n").into_bytes();
+        bytes.extend(std::iter::repeat_n(0u8, 4 - bytes.len() % 4));
+        bytes.extend((0..16).flat_map(|k| (k as f32).to_le_bytes()));
+        bytes
+    };
+    let full = gsf("4");
+    let cases: Vec<(String, Vec<&str>, &str)> = vec![
+        (write("truncated.gsf", &full[..full.len() - 6]), vec![], "truncated: 4 x 4 heights take 64 bytes"),
+        (write("zero.gsf", &gsf("0")), vec![], "the pixel size along x is 0"),
+        (write("nan.txt", b"1 2 3\n4 nan 6\n7 8 9\n"), vec!["--pixel-size", "1"], "line 2: NaN is not a finite number"),
+        (
+            write("grid.xyz", b"0 0 1\n1 0 1\n3 0 1\n0 1 1\n1 1 1\n3 1 1\n0 2 1\n1 2 1\n3 2 1\n"),
+            vec!["--columns"],
+            "the grid is not regular",
+        ),
+        (
+            write("flat.txt", b"1 1 1\n1 1 1\n1 1 1\n"),
+            vec!["--pixel-size", "1"],
+            "no pixel is higher than its 8 neighbours",
+        ),
+        (write("layout.txt", b"1 2 3\n"), vec![], "a text map needs its layout"),
+        (write("zero-pixel.txt", b"1 2 3\n4 9 6\n7 8 9\n"), vec!["--pixel-size", "0"], "pixel size along x is 0"),
+    ];
+    for (file, extra, expected) in cases {
+        let run = Command::new(exe).args(["surface", "stats", &file]).args(&extra).output().unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{file}: {stderr}");
+        assert!(
+            stderr.contains(&file) && stderr.contains(expected) && !stderr.contains("panicked"),
+            "{file}: {stderr}"
+        );
+    }
+    let missing = Command::new(exe).args(["surface", "stats", "no-such-map.gsf"]).output().unwrap();
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("no-such-map.gsf"));
+}

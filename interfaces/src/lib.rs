@@ -14,6 +14,7 @@ pub mod contact_resistance;
 pub mod damage_dissipation;
 pub mod footprint;
 pub mod footprint_compliance;
+pub mod height_map;
 pub mod local_footprint;
 pub mod mesh_split;
 pub mod plugin;
