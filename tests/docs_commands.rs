@@ -226,3 +226,41 @@ fn two_interfaces_get_their_own_history_columns() {
     assert!(far_force < 0.0 && -far_force < 1e-4 * max(&one[0]), "far flat's force {far_force}");
     assert_eq!(two[1]["separated"], false);
 }
+
+/// Every field `summary.json` holds (at the top, per interface, and in its `units` block) is
+/// named in the output reference's `summary.json` section, and every name there is a field: the
+/// reference cannot fall behind the file, nor describe a field that is gone.
+#[test]
+fn the_output_reference_names_every_summary_field_and_no_other() {
+    use stiction::run::{InterfaceSummary, RunSummary};
+    let text = std::fs::read_to_string(root().join("docs/outputs.md")).unwrap();
+    let start = text.find("## `summary.json`").expect("a summary.json section");
+    let end = text[start + 3..].find("\n## ").map_or(text.len(), |i| start + 3 + i);
+    let section = &text[start..end];
+    // the names in the first column of its tables: `a`, `b[]`, comma-joined
+    let documented: std::collections::BTreeSet<String> = section
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `"))
+        .flat_map(|l| {
+            l.split(" |")
+                .next()
+                .unwrap_or("")
+                .split(',')
+                .map(|n| n.trim().trim_matches('`').trim_end_matches("[]").to_string())
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let summary = RunSummary { interfaces: vec![InterfaceSummary::default()], ..Default::default() };
+    let json = serde_json::to_value(&summary).unwrap();
+    let mut fields: std::collections::BTreeSet<String> = json.as_object().unwrap().keys().cloned().collect();
+    fields.extend(json["interfaces"][0].as_object().unwrap().keys().cloned());
+    let missing: Vec<&String> = fields.iter().filter(|f| !documented.contains(*f)).collect();
+    assert!(missing.is_empty(), "summary.json fields not in docs/outputs.md: {missing:?}");
+    let stale: Vec<&String> = documented.iter().filter(|d| !fields.contains(*d)).collect();
+    assert!(stale.is_empty(), "docs/outputs.md names summary.json fields that do not exist: {stale:?}");
+    // the units block's dimensions are listed in its row
+    let units_row = section.lines().find(|l| l.starts_with("| `units`")).unwrap();
+    for unit in json["units"].as_object().unwrap().keys() {
+        assert!(units_row.contains(&format!("`{unit}`")), "the units row does not name `{unit}`");
+    }
+}
