@@ -98,7 +98,7 @@ pub fn read_map(path: &Path, options: &StatsOptions) -> Result<HeightMap, Surfac
 }
 
 /// Measures the map at `path`; with `out`, writes `summits.csv`, `surface-stats.json` and the
-/// plots there.
+/// plots there. A map with no summit is refused before anything is written.
 pub fn stats(path: &Path, options: &StatsOptions, out: Option<&Path>) -> Result<StatsReport, SurfaceError> {
     let map = read_map(path, options)?;
     let summits = find(&map, options.rule);
@@ -124,6 +124,17 @@ pub fn stats(path: &Path, options: &StatsOptions, out: Option<&Path>) -> Result<
         hurst: (range.1 > range.0).then(|| hurst_exponent(&map, range, options.window)).flatten(),
         mccool_product: 0.019,
     };
+    if summits.is_empty() {
+        return Err(SurfaceError::Input(format!(
+            "height map '{}': no pixel is higher than its 8 neighbours{}",
+            path.display(),
+            if options.rule.threshold.is_finite() {
+                format!(" and {} {} above the mean (--threshold)", options.rule.threshold, map.z_unit)
+            } else {
+                String::new()
+            }
+        )));
+    }
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).map_err(|e| written(dir)(e.to_string()))?;
         write_summits(&dir.join("summits.csv"), &summits)?;
@@ -135,17 +146,6 @@ pub fn stats(path: &Path, options: &StatsOptions, out: Option<&Path>) -> Result<
             let file = dir.join(format!("summit-heights.{ext}"));
             plot_histogram(&file, &map, &summits).map_err(written(&file))?;
         }
-    }
-    if summits.is_empty() {
-        return Err(SurfaceError::Input(format!(
-            "height map '{}': no pixel is higher than its 8 neighbours{}",
-            path.display(),
-            if options.rule.threshold.is_finite() {
-                format!(" and {} {} above the mean (--threshold)", options.rule.threshold, map.z_unit)
-            } else {
-                String::new()
-            }
-        )));
     }
     Ok(report)
 }
