@@ -115,14 +115,7 @@ mod tests {
 
     #[test]
     fn accepting_a_turned_increment_is_a_limit_point_and_forward_past_the_failure_resumes() {
-        let inc = Incrementation {
-            initial: 0.1,
-            minimum: 1e-3,
-            maximum: 0.2,
-            cut_factor: 0.25,
-            growth_factor: 1.5,
-            easy_iterations: 5,
-        };
+        let inc = Incrementation::for_tests();
         let mut arc = ArcLengthControl::start(PreviousIncrement { du: vec![1.0], dt: 0.1 }, 0.5).unwrap();
         arc.pending = Some(PreviousIncrement { du: vec![1.0], dt: -0.01 });
         let turned = arc.accept(0.39, 10, &inc);

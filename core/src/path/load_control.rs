@@ -218,14 +218,7 @@ mod tests {
     use crate::nonlinear::IncrementFailure;
 
     fn incrementation() -> Incrementation {
-        Incrementation {
-            initial: 0.1,
-            minimum: 1e-3,
-            maximum: 0.2,
-            cut_factor: 0.25,
-            growth_factor: 1.5,
-            easy_iterations: 5,
-        }
+        Incrementation::for_tests()
     }
 
     fn window(t: f64, breakpoints: &[f64]) -> StepWindow<'_> {

@@ -24,6 +24,20 @@ impl Incrementation {
     /// Increments converged in at most this many iterations let the next one grow.
     pub const EASY_ITERATIONS: usize = 5;
 
+    /// The incrementation the path's unit tests share: initial 0.1, minimum 1e-3, maximum 0.2,
+    /// and the default factors.
+    #[cfg(test)]
+    pub(crate) fn for_tests() -> Self {
+        Self {
+            initial: 0.1,
+            minimum: 1e-3,
+            maximum: 0.2,
+            cut_factor: Self::DEFAULT_CUT_FACTOR,
+            growth_factor: Self::DEFAULT_GROWTH_FACTOR,
+            easy_iterations: Self::EASY_ITERATIONS,
+        }
+    }
+
     pub fn validate(&self) -> Result<()> {
         let finite = [self.initial, self.minimum, self.maximum, self.cut_factor, self.growth_factor]
             .iter()

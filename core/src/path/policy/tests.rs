@@ -4,14 +4,7 @@ use super::*;
 use crate::path::ContinuationMethod;
 
 fn incrementation() -> Incrementation {
-    Incrementation {
-        initial: 0.1,
-        minimum: 1e-3,
-        maximum: 0.2,
-        cut_factor: 0.25,
-        growth_factor: 1.5,
-        easy_iterations: 5,
-    }
+    Incrementation::for_tests()
 }
 
 const DIVERGED: IncrementFailure = IncrementFailure::Diverged { iterations: 25, residual: 1.0 };
