@@ -145,7 +145,8 @@ impl PathPolicy {
         self.arc_blocked
     }
 
-    /// The initial state failed the residual test by `residual` against `test`.
+    /// The initial state's residual norm and the solver's residual test, where the residual
+    /// fails the test (None: the start is balanced, or the run resumed past it).
     pub fn unbalanced_start(&mut self, imbalance: Option<(f64, f64)>) {
         self.unbalanced_start = imbalance;
     }
