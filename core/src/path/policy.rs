@@ -23,10 +23,11 @@
 //!    over that next increment instead of cutting down to it.
 //! 6. [`Rule::Cut`]: load control cuts its increment; below its minimum the path snaps.
 //!
-//! Snaps, whatever asked for them ([`PathPolicy::snap`]): [`Rule::Stuck`]: after
-//! [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row at the minimum increment, the next goes one
-//! initial increment ahead; where that is no further than the minimum, [`Rule::NoProgress`]
-//! stops the run with the reason.
+//! Snaps at the minimum increment (a control that cannot cut, [`PathPolicy::snap`]; an
+//! unbalanced start): [`Rule::Stuck`]: after [`MAX_SNAPS_WITHOUT_PROGRESS`] snaps in a row at
+//! the minimum increment, the next goes one initial increment ahead. Any snap: where it would
+//! go no further than the minimum after that many, [`Rule::NoProgress`] stops the run with the
+//! reason.
 //!
 //! Before an attempt ([`PathPolicy::before_attempt`]): [`Rule::Crawl`]: after [`CRAWL_COMMITS`]
 //! committed load-controlled increments in a row each below [`CRAWL_FRACTION`] of the step's
