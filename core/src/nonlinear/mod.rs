@@ -67,12 +67,6 @@ pub enum IncrementFailure {
     /// A dissipation-controlled increment found nothing damaging within its reach (the
     /// constraint has no gradient).
     NoDissipation,
-    /// A load-controlled increment converged on another branch than the path's (without
-    /// continuation: it moved more than [`crate::path::policy::JUMP_RATIO`] times what the last
-    /// increment's rate predicts, "moved too far"); it is cut like one that did not converge.
-    Jumped {
-        why: &'static str,
-    },
     /// A damped flow took its most steps without coming to rest.
     FlowUnsettled {
         steps: usize,
@@ -115,9 +109,6 @@ impl std::fmt::Display for IncrementFailure {
             }
             IncrementFailure::NoDissipation => {
                 write!(f, "no damage within reach of the increment: the dissipation cannot set its length")
-            }
-            IncrementFailure::Jumped { why } => {
-                write!(f, "the increment jumped to another branch ({why})")
             }
             IncrementFailure::FlowUnsettled { steps, residual } => write!(
                 f,

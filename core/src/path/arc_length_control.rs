@@ -5,10 +5,10 @@
 //! that failed.
 
 use super::step::Incrementation;
-use super::{Attempt, Crossing, CrossingOutcome, Cut, CutRefused, PathControl, Solvers, StepWindow};
+use super::{Attempt, AttemptFailure, Crossing, CrossingOutcome, Cut, CutRefused, PathControl, Solvers, StepWindow};
 use crate::model::Model;
+use crate::nonlinear::ReferenceScales;
 use crate::nonlinear::arc_length::{ArcLengthRequest, PreviousIncrement, solve_arc_length_increment};
-use crate::nonlinear::{IncrementFailure, ReferenceScales};
 use crate::vector::norm;
 
 pub struct ArcLengthControl {
@@ -86,7 +86,7 @@ impl PathControl for ArcLengthControl {
         }
     }
 
-    fn cut(&mut self, _failure: &IncrementFailure) -> Result<Cut, CutRefused> {
+    fn cut(&mut self, _failure: &AttemptFailure) -> Result<Cut, CutRefused> {
         self.ds *= 0.5;
         if self.ds < 1e-4 * self.ds_initial {
             Err(CutRefused::ArcLengthStalled { arc_length: self.ds })
@@ -106,7 +106,8 @@ mod tests {
         let mut arc = ArcLengthControl::start(previous, 1.0).unwrap();
         assert!((arc.ds - 5.0 * std::f64::consts::SQRT_2).abs() < 1e-12);
         assert!((arc.time_weight - 10.0).abs() < 1e-12);
-        let failure = IncrementFailure::Diverged { iterations: 25, residual: 1.0 };
+        let failure =
+            AttemptFailure::Solver(crate::nonlinear::IncrementFailure::Diverged { iterations: 25, residual: 1.0 });
         let halvings = std::iter::from_fn(|| arc.cut(&failure).ok()).count();
         // 0.5^k >= 1e-4 for k = 1..13
         assert_eq!(halvings, 13);

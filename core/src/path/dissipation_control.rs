@@ -11,7 +11,7 @@
 
 use super::arc_length_control::ArcLengthControl;
 use super::step::Incrementation;
-use super::{Attempt, Crossing, CrossingOutcome, Cut, CutRefused, PathControl, Solvers, StepWindow};
+use super::{Attempt, AttemptFailure, Crossing, CrossingOutcome, Cut, CutRefused, PathControl, Solvers, StepWindow};
 use crate::model::Model;
 use crate::nonlinear::arc_length::PreviousIncrement;
 use crate::nonlinear::dissipation::{DissipationRequest, dissipation_of, solve_dissipation_increment};
@@ -135,14 +135,14 @@ impl PathControl for DissipationControl {
         }
     }
 
-    fn cut(&mut self, failure: &IncrementFailure) -> Result<Cut, CutRefused> {
+    fn cut(&mut self, failure: &AttemptFailure) -> Result<Cut, CutRefused> {
         if let Some(arc) = self.fallback.as_mut() {
             return arc.cut(failure);
         }
         let Some(energy) = self.energy.as_mut() else {
             return Err(CutRefused::DissipationNotStarted);
         };
-        if matches!(failure, IncrementFailure::NoDissipation) {
+        if matches!(failure, AttemptFailure::Solver(IncrementFailure::NoDissipation)) {
             // more than the cracks have left: see the module documentation
             *energy *= 0.25;
             return Ok(Cut::Energy { energy: *energy, emptied: true });
@@ -194,7 +194,7 @@ mod tests {
     #[test]
     fn cuts_halve_the_energy_and_stall_below_1e_4_of_the_first() {
         let mut control = DissipationControl::start(PreviousIncrement { du: vec![1.0], dt: 0.1 }, 0.5).unwrap();
-        let failure = IncrementFailure::Diverged { iterations: 25, residual: 1.0 };
+        let failure = AttemptFailure::Solver(IncrementFailure::Diverged { iterations: 25, residual: 1.0 });
         assert!(control.cut(&failure).is_err(), "no energy measured yet: cannot cut");
         (control.energy, control.energy_initial) = (Some(1.0), 1.0);
         let halvings = std::iter::from_fn(|| control.cut(&failure).ok()).count();

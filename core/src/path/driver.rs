@@ -30,7 +30,7 @@ use super::load_control::{LoadControl, StartPredictor};
 use super::policy::{CRAWL_FRACTION, Decision, FailureFacts, JumpFacts, PathPolicy, jumped};
 use super::step::StepPlan;
 use super::tangent_choice::{TangentChoice, TangentSwitch};
-use super::{Attempt, Crossing, PathControl, Solvers, StepWindow};
+use super::{Attempt, AttemptFailure, Crossing, PathControl, Solvers, StepWindow};
 use crate::checkpoint::CheckpointPlan;
 use crate::error::{CoreError, Result};
 use crate::linear_solver::LinearSolver;
@@ -486,7 +486,7 @@ impl Driver<'_> {
             }
             Attempt::Failed(failure) => {
                 self.summary.discarded_attempt_seconds += attempt_seconds;
-                self.failed(si, &failure, attempted)?
+                self.failed(si, &AttemptFailure::Solver(failure), attempted)?
             }
             Attempt::OutsideWindow => {
                 self.crossing = None;
@@ -499,14 +499,16 @@ impl Driver<'_> {
 
     /// A failed attempt (over `attempted`, when load-controlled): roll back, then cut the active
     /// control (or start arc length, or snap).
-    fn failed(&mut self, si: usize, failure: &IncrementFailure, attempted: f64) -> Result<Flow> {
-        if let IncrementFailure::Error(CoreError::LawFailure { law, interface, point, message, .. }) = failure {
+    fn failed(&mut self, si: usize, failure: &AttemptFailure, attempted: f64) -> Result<Flow> {
+        if let Some(IncrementFailure::Error(CoreError::LawFailure { law, interface, point, message, .. })) =
+            failure.solver()
+        {
             let entry =
                 self.path.law_failures.entry((law.clone(), interface.clone(), message.clone())).or_insert((0, *point));
             entry.0 += 1;
         }
         self.model.rollback();
-        if let Some(what) = self.tangent.after_failure(self.model, failure) {
+        if let Some(what) = failure.solver().and_then(|f| self.tangent.after_failure(self.model, f)) {
             let text = format!("{}: {what} at t = {:.6}", self.plan.steps[si].name, self.path.t);
             self.observers.iter_mut().for_each(|o| o.message(&text));
         }
@@ -530,7 +532,7 @@ impl Driver<'_> {
     }
 
     /// Carries out the policy's `decision` after the `failure` of an attempt.
-    fn carry_out_after(&mut self, si: usize, decision: Decision, failure: &IncrementFailure) -> Result<Flow> {
+    fn carry_out_after(&mut self, si: usize, decision: Decision, failure: &AttemptFailure) -> Result<Flow> {
         let cut = match decision {
             Decision::CutCrossing => match self.crossing.as_mut() {
                 Some(arc) => arc.cut(failure),
@@ -596,7 +598,7 @@ impl Driver<'_> {
     /// displacement-controlled body moves to on its own, where Newton's iterations chose one).
     fn after_jump(&mut self, si: usize, target: f64, why: &'static str) -> Result<Flow> {
         let Some(continuation) = self.plan.continuation else {
-            return self.failed(si, &IncrementFailure::Jumped { why }, target - self.path.t);
+            return self.failed(si, &AttemptFailure::Jumped { why }, target - self.path.t);
         };
         self.model.rollback();
         self.summary.cut_increments += 1;

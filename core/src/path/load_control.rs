@@ -11,9 +11,9 @@
 //! a failed attempt or a snap, none (the committed state).
 
 use super::step::Incrementation;
-use super::{Attempt, Cut, CutRefused, PathControl, Solvers, StepWindow};
+use super::{Attempt, AttemptFailure, Cut, CutRefused, PathControl, Solvers, StepWindow};
 use crate::model::Model;
-use crate::nonlinear::{IncrementFailure, IncrementReport, ReferenceScales};
+use crate::nonlinear::{IncrementReport, ReferenceScales};
 
 /// The predictor of the increments that have no earlier rate to extrapolate.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -202,7 +202,7 @@ impl PathControl for LoadControl {
         }
     }
 
-    fn cut(&mut self, _failure: &IncrementFailure) -> Result<Cut, CutRefused> {
+    fn cut(&mut self, _failure: &AttemptFailure) -> Result<Cut, CutRefused> {
         self.dt *= self.incrementation.cut_factor;
         if self.dt < self.incrementation.minimum {
             Err(CutRefused::BelowMinimum { minimum: self.incrementation.minimum })
@@ -241,7 +241,7 @@ mod tests {
     #[test]
     fn cuts_shrink_the_increment_until_the_minimum_then_stop_with_the_reason() {
         let mut control = LoadControl::new(&incrementation(), StartPredictor::Tangent);
-        let failure = IncrementFailure::Diverged { iterations: 25, residual: 1.0 };
+        let failure = AttemptFailure::Solver(IncrementFailure::Diverged { iterations: 25, residual: 1.0 });
         let mut cuts = 0;
         let message = loop {
             match control.cut(&failure) {

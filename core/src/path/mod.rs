@@ -62,6 +62,44 @@ pub enum Attempt {
     OutsideWindow,
 }
 
+/// Why an attempt failed: its solver's failure, or the path's verdict on an increment that
+/// converged.
+#[derive(Debug)]
+pub enum AttemptFailure {
+    Solver(IncrementFailure),
+    /// A load-controlled increment converged on another branch than the path's (without
+    /// continuation: it moved more than [`policy::JUMP_RATIO`] times what the last increment's
+    /// rate predicts, "moved too far"; [`policy::jumped`]); it is cut like one that did not
+    /// converge.
+    Jumped {
+        why: &'static str,
+    },
+}
+
+impl AttemptFailure {
+    /// The solver's failure, if the solver failed.
+    pub fn solver(&self) -> Option<&IncrementFailure> {
+        match self {
+            AttemptFailure::Solver(f) => Some(f),
+            AttemptFailure::Jumped { .. } => None,
+        }
+    }
+
+    /// Whether the solver's iterations did not converge ([`IncrementFailure::is_no_convergence`]).
+    pub fn is_no_convergence(&self) -> bool {
+        self.solver().is_some_and(IncrementFailure::is_no_convergence)
+    }
+}
+
+impl std::fmt::Display for AttemptFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            AttemptFailure::Solver(failure) => failure.fmt(f),
+            AttemptFailure::Jumped { why } => write!(f, "the increment jumped to another branch ({why})"),
+        }
+    }
+}
+
 /// A way to choose and solve the next increment from the committed state.
 pub trait PathControl {
     /// Solves the next increment from the committed state at `window.t`.
@@ -73,7 +111,7 @@ pub trait PathControl {
         scales: ReferenceScales,
     ) -> Attempt;
     /// After a failed attempt (`failure`): makes the next one smaller, or says why it cannot.
-    fn cut(&mut self, failure: &IncrementFailure) -> Result<Cut, CutRefused>;
+    fn cut(&mut self, failure: &AttemptFailure) -> Result<Cut, CutRefused>;
 }
 
 /// How a control shortened its next attempt.
@@ -116,7 +154,7 @@ pub enum CutRefused {
 
 impl CutRefused {
     /// Why, after `failure`, in the run's words.
-    pub fn reason(&self, failure: &IncrementFailure) -> String {
+    pub fn reason(&self, failure: &AttemptFailure) -> String {
         match self {
             CutRefused::BelowMinimum { minimum } => {
                 format!("increment below the minimum {minimum:.3e} after: {failure}")

@@ -39,8 +39,8 @@
 //! over a limit point onto another branch: it is rolled back and handled as a failure (or the
 //! crossing starts).
 
-use super::Continuation;
 use super::step::Incrementation;
+use super::{AttemptFailure, Continuation};
 use crate::nonlinear::IncrementFailure;
 use serde::{Deserialize, Serialize};
 
@@ -94,7 +94,7 @@ pub enum Decision {
 /// What the rules after a failed attempt read.
 #[derive(Debug, Clone, Copy)]
 pub struct FailureFacts<'a> {
-    pub failure: &'a IncrementFailure,
+    pub failure: &'a AttemptFailure,
     /// Pseudo-time of the committed state.
     pub t: f64,
     /// The failed load-controlled attempt's increment (target - t).
@@ -229,7 +229,7 @@ impl PathPolicy {
     /// that stalled place a fold within the next attempt's reach (see [`fold_ahead`]): then that
     /// next increment, to snap over, and the reason. Remembers a stalled attempt.
     fn fold_within_reach(&mut self, facts: &FailureFacts<'_>) -> Option<(f64, String)> {
-        let IncrementFailure::Stagnated { residual, earlier, .. } = facts.failure else { return None };
+        let Some(IncrementFailure::Stagnated { residual, earlier, .. }) = facts.failure.solver() else { return None };
         if facts.continuation.is_some() {
             // the crossing takes the folds over (and locates them)
             return None;

@@ -7,9 +7,9 @@ fn incrementation() -> Incrementation {
     Incrementation::for_tests()
 }
 
-const DIVERGED: IncrementFailure = IncrementFailure::Diverged { iterations: 25, residual: 1.0 };
+const DIVERGED: AttemptFailure = AttemptFailure::Solver(IncrementFailure::Diverged { iterations: 25, residual: 1.0 });
 
-fn facts<'a>(failure: &'a IncrementFailure, incrementation: &'a Incrementation) -> FailureFacts<'a> {
+fn facts<'a>(failure: &'a AttemptFailure, incrementation: &'a Incrementation) -> FailureFacts<'a> {
     FailureFacts {
         failure,
         t: 0.5,
@@ -52,7 +52,7 @@ fn an_unbalanced_start_snaps_at_the_minimum_once_and_only_on_a_convergence_failu
     let inc = incrementation();
     let mut policy = PathPolicy::default();
     policy.unbalanced_start(Some((2.0, 1.0)));
-    let law = IncrementFailure::Jumped { why: "moved too far" };
+    let law = AttemptFailure::Jumped { why: "moved too far" };
     assert_eq!(fail(&mut policy, &facts(&law, &inc)), Decision::CutLoad, "not a failure to converge");
     let Decision::Snap { dt, crawl, reason, rule } = fail(&mut policy, &facts(&DIVERGED, &inc)) else {
         panic!("the unbalanced start snaps")
@@ -158,7 +158,9 @@ fn two_stalled_attempts_place_a_fold_by_the_secant_of_their_floors() {
 fn a_fold_within_the_next_cuts_reach_is_snapped_over_at_once_without_continuation_only() {
     let inc = incrementation();
     let floor = |target: f64| 100.0 * (target - 0.503);
-    let stalled = |target: f64| IncrementFailure::Stagnated { iterations: 8, residual: floor(target), earlier: 1e9 };
+    let stalled = |target: f64| {
+        AttemptFailure::Solver(IncrementFailure::Stagnated { iterations: 8, residual: floor(target), earlier: 1e9 })
+    };
     let (first, second) = (stalled(0.6), stalled(0.525));
     let mut policy = PathPolicy::default();
     assert_eq!(fail(&mut policy, &facts(&first, &inc)), Decision::CutLoad, "one stall places nothing");
@@ -171,8 +173,13 @@ fn a_fold_within_the_next_cuts_reach_is_snapped_over_at_once_without_continuatio
     assert!((dt - 0.025 * inc.cut_factor).abs() < 1e-15, "the next cut's increment: {dt}");
     assert!(reason.starts_with("a fold 3.00e-3 from t = 0.500000"), "{reason}");
     // a fold farther ahead than the next cut: load control cuts on
-    let far =
-        |target: f64| IncrementFailure::Stagnated { iterations: 8, residual: 100.0 * (target - 0.52), earlier: 1e9 };
+    let far = |target: f64| {
+        AttemptFailure::Solver(IncrementFailure::Stagnated {
+            iterations: 8,
+            residual: 100.0 * (target - 0.52),
+            earlier: 1e9,
+        })
+    };
     let mut policy = PathPolicy::default();
     fail(&mut policy, &facts(&far(0.6), &inc));
     assert_eq!(fail(&mut policy, &FailureFacts { attempted: 0.025, ..facts(&far(0.525), &inc) }), Decision::CutLoad);
@@ -222,7 +229,7 @@ fn snaps_in_a_row_at_the_minimum_go_one_initial_increment_ahead_then_stop() {
 fn a_failed_run_is_saved_to_go_on_as_from_a_steps_start() {
     let inc = incrementation();
     let mut policy = PathPolicy::default();
-    let stalled = IncrementFailure::Stagnated { iterations: 8, residual: 10.0, earlier: 1e9 };
+    let stalled = AttemptFailure::Solver(IncrementFailure::Stagnated { iterations: 8, residual: 10.0, earlier: 1e9 });
     fail(&mut policy, &facts(&stalled, &inc));
     for _ in 0..MAX_SNAPS_WITHOUT_PROGRESS {
         policy.snapped(inc.minimum, &inc);
