@@ -4,7 +4,7 @@
 //! ([`stiction_interfaces::local_footprint`]).
 //!
 //! The compliance, when not given, is computed per point as what the mesh misses
-//! ([`stiction_interfaces::footprint_compliance`], which has the formulas):
+//! ([`stiction_interfaces::footprint_compliance`], which has the formulas).
 
 use super::amplitudes::Amplitudes;
 use crate::case::{FootprintCorrectionSpec, LimitPressure, LoadedCase, MaterialSpec, VON_MISES_DISC};
