@@ -368,6 +368,30 @@ fn plugin_check(law: &str, params: &[String], config: Option<PathBuf>, gap_scale
     if failed == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) }
 }
 
+/// `stiction plot`: the force and area curves of several runs overlaid.
+fn plot_runs(runs: &[PathBuf], output: &std::path::Path, title: &str) -> ExitCode {
+    let mut curves = Vec::new();
+    for r in runs {
+        let label = r.file_name().and_then(|s| s.to_str()).unwrap_or("run").to_string();
+        match stiction::plots::read_history(&r.join("history.csv"), &label) {
+            Some(c) => curves.push(c),
+            None => {
+                eprintln!("error: '{}' has no history.csv with approach, force and contact_area columns", r.display());
+                return ExitCode::from(2);
+            }
+        }
+    }
+    if let Err(e) = std::fs::create_dir_all(output)
+        .map_err(|e| e.to_string())
+        .and_then(|_| stiction::plots::plot_curves(output, "", title, &curves))
+    {
+        eprintln!("error: {e}");
+        return ExitCode::from(1);
+    }
+    println!("wrote {}/force_approach.png/.svg and area_approach.png/.svg", output.display());
+    ExitCode::SUCCESS
+}
+
 /// `stiction surface generate` and `stats`.
 fn surface(command: SurfaceCommand) -> ExitCode {
     use stiction::surface::{StatsOptions, SurfaceError};
@@ -643,31 +667,7 @@ fn main() -> ExitCode {
         Command::Calibrate { table, output, loading_order, unloading_order, work_of_adhesion } => {
             return calibrate(&table, &output, loading_order, unloading_order, work_of_adhesion);
         }
-        Command::Plot { runs, output, title } => {
-            let mut curves = Vec::new();
-            for r in &runs {
-                let label = r.file_name().and_then(|s| s.to_str()).unwrap_or("run").to_string();
-                match stiction::plots::read_history(&r.join("history.csv"), &label) {
-                    Some(c) => curves.push(c),
-                    None => {
-                        eprintln!(
-                            "error: '{}' has no history.csv with approach, force and contact_area columns",
-                            r.display()
-                        );
-                        return ExitCode::from(2);
-                    }
-                }
-            }
-            if let Err(e) = std::fs::create_dir_all(&output)
-                .map_err(|e| e.to_string())
-                .and_then(|_| stiction::plots::plot_curves(&output, "", &title, &curves))
-            {
-                eprintln!("error: {e}");
-                return ExitCode::from(1);
-            }
-            println!("wrote {}/force_approach.png/.svg and area_approach.png/.svg", output.display());
-            Ok(())
-        }
+        Command::Plot { runs, output, title } => return plot_runs(&runs, &output, &title),
         Command::SurrogateTable { work_of_adhesion, output, samples } => {
             if !(work_of_adhesion > 0.0) || samples < 10 {
                 eprintln!("error: --work-of-adhesion must be positive and --samples at least 10");

@@ -22,11 +22,12 @@ pub enum SurfaceError {
 }
 
 impl SurfaceError {
+    /// 1 for an output that could not be written, 2 for bad input (a map that cannot be read
+    /// included).
     pub fn exit_code(&self) -> u8 {
         match self {
             SurfaceError::Output { .. } => 1,
-            SurfaceError::Map(HeightMapError::Io { .. }) => 2,
-            _ => 2,
+            SurfaceError::Input(_) | SurfaceError::Map(_) => 2,
         }
     }
 }
