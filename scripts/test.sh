@@ -11,4 +11,4 @@ cargo test --workspace
 # the optional MPI build: `mpirun -n 2 stiction ensemble` against the serial aggregate
 # (`--workspace`: the same packages as the first run, so that their features, and their builds,
 # are the same)
-cargo test --workspace --features stiction/mpi --test ensemble mpi_
+cargo test --workspace --features stiction/mpi --test ensemble --test fit mpi_

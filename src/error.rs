@@ -32,6 +32,16 @@ pub enum StictionError {
          to resume (completed members are skipped)"
     )]
     EnsembleInterrupted { completed: usize, members: usize, out: PathBuf },
+    #[error("fit file '{path}': {message}")]
+    Fit { path: PathBuf, message: String },
+    #[error("fit file '{path}', key '{key}': {message}")]
+    FitKey { path: PathBuf, key: String, message: String },
+    #[error("target file '{path}'{}: {message}", if *line > 0 { format!(", line {line}") } else { String::new() })]
+    TargetFile { path: PathBuf, line: usize, message: String },
+    #[error("the fit stopped: {message} (every run so far and fit_history.csv are in '{out}'; the same command with --resume goes on)")]
+    FitFailed { message: String, out: PathBuf },
+    #[error("fit interrupted; every completed run is in '{out}': the same command with --resume goes on from there")]
+    FitInterrupted { out: PathBuf },
     #[error("no member of the ensemble completed ({members} members; see the errors in '{out}/ensemble.json')")]
     EnsembleFailed { members: usize, out: PathBuf },
 }
@@ -43,7 +53,8 @@ impl StictionError {
             StictionError::RunFailed { .. } => 1,
             StictionError::Interrupted { .. } | StictionError::EnsembleInterrupted { .. } => 130,
             StictionError::Mesh(stiction_meshes::MeshError::GmshInterrupted { .. }) => 130,
-            StictionError::EnsembleFailed { .. } => 1,
+            StictionError::EnsembleFailed { .. } | StictionError::FitFailed { .. } => 1,
+            StictionError::FitInterrupted { .. } => 130,
             StictionError::Core(stiction_core::CoreError::Write { .. }) => 1,
             _ => 2,
         }

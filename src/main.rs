@@ -74,6 +74,28 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Fit numeric case keys (law parameters, material constants, ...) to measured curves and
+    /// summary numbers, with the FE model in the loop (Levenberg-Marquardt, finite-difference
+    /// Jacobians whose runs go concurrently). Writes fit.json (values, 95% intervals, residuals
+    /// per target), fit_history.csv, fit_<k>.png/.svg and fitted-<case>.toml to DIR. The fit
+    /// file is described in docs/fitting.md. Under `mpirun -n P` (a build with the cargo feature
+    /// `mpi`) the runs spread over the ranks.
+    Fit {
+        /// The fit file (TOML): cases, parameters, targets, optimizer.
+        fit: PathBuf,
+        /// The fit's folder (default: out/fit-<name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Go on with the fit in the folder: its completed runs are reused.
+        #[arg(long, conflicts_with = "overwrite")]
+        resume: bool,
+        /// Replace an earlier fit in the folder.
+        #[arg(long)]
+        overwrite: bool,
+        /// Do not report each run.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Validate a case (schema, mesh, groups, materials, boundary conditions) without solving.
     Check {
         /// The case file (TOML)
@@ -229,6 +251,8 @@ enum ReferenceCommand {
     /// Every case-file key: its value type, default, unit, allowed range, what it applies to and
     /// what it means (Markdown; docs/reference/case-keys.md).
     CaseKeys,
+    /// Every fit-file key (`stiction fit`), likewise (Markdown; docs/reference/fit-keys.md).
+    FitKeys,
 }
 
 #[derive(Subcommand)]
@@ -603,7 +627,7 @@ fn run_ensemble(
     #[cfg(not(feature = "mpi"))]
     let aggregate = Some(stiction::ensemble::run_ensemble(case, sets, options)?);
     if let Some(a) = aggregate {
-        for line in stiction::report::ensemble_lines(&a) {
+        for line in stiction::ensemble::lines(&a) {
             println!("{line}");
         }
     }
@@ -645,6 +669,21 @@ fn main() -> ExitCode {
             };
             run_ensemble(&case, &sets, &options)
         }
+        Command::Fit { fit, out, resume, overwrite, quiet } => (|| {
+            let options = stiction::fit::FitOptions { out, resume, overwrite, interrupt: Some(interrupt_on_ctrl_c()), quiet };
+            #[cfg(feature = "mpi")]
+            let report = if stiction::ensemble::mpi::launched_under_mpi() {
+                stiction::fit::mpi::run_fit_mpi(&fit, &options)?
+            } else {
+                Some(stiction::fit::run_fit(&fit, &options)?)
+            };
+            #[cfg(not(feature = "mpi"))]
+            let report = Some(stiction::fit::run_fit(&fit, &options)?);
+            for line in report.iter().flat_map(stiction::fit::lines) {
+                println!("{line}");
+            }
+            Ok(())
+        })(),
         Command::Check { case, sets } => (|| {
             let loaded = case::load(&case, &sets)?;
             let built = stiction::build::build(&loaded)?;
@@ -686,6 +725,10 @@ fn main() -> ExitCode {
         }
         Command::Reference { what: ReferenceCommand::CaseKeys } => {
             print!("{}", case::reference::case_keys_markdown());
+            Ok(())
+        }
+        Command::Reference { what: ReferenceCommand::FitKeys } => {
+            print!("{}", stiction::fit::spec::fit_keys_markdown());
             Ok(())
         }
         Command::Plugins { dirs } => {

@@ -17,8 +17,9 @@ use std::path::{Path, PathBuf};
 
 /// Files that mark a folder as written by an earlier run of Stiction, each with a key its JSON
 /// object holds (`sweep.json`: a list of run summaries, each with a status).
-const RUN_MARKERS: [(&str, &str); 4] = [
+const RUN_MARKERS: [(&str, &str); 5] = [
     ("summary.json", "status"),
+    ("fit-plan.json", "fingerprint"),
     ("sweep-plan.json", "fingerprint"),
     ("sweep.json", "status"),
     ("member.json", "status"),
@@ -28,7 +29,7 @@ const RUN_MARKERS: [(&str, &str); 4] = [
 pub const LOCK_FILE: &str = ".stiction-lock";
 
 /// Files a run, a sweep or an ensemble writes, by exact name.
-const WRITTEN_FILES: [&str; 16] = [
+const WRITTEN_FILES: [&str; 19] = [
     "history.csv",
     "events.csv",
     "cycles.csv",
@@ -44,13 +45,16 @@ const WRITTEN_FILES: [&str; 16] = [
     "ensemble_loading.csv",
     "ensemble_unloading.csv",
     "contact_views.pvsm",
+    "fit-plan.json",
+    "fit.json",
+    "fit_history.csv",
     LOCK_FILE,
 ];
 
 /// Stems of the plots (`.png`, `.svg`) a run writes; `combined_`, `ensemble_` and `view_`
 /// (ParaView's standard views) begin families of them.
 const PLOT_STEMS: [&str; 5] = ["force_approach", "area_approach", "resistance_approach", "resistance_force", "cycles"];
-const PLOT_PREFIXES: [&str; 3] = ["combined_", "ensemble_", "view_"];
+const PLOT_PREFIXES: [&str; 4] = ["combined_", "ensemble_", "view_", "fit_"];
 
 /// Whether a file of this name is one a Stiction run writes: its CSV, JSON and log files, the
 /// checkpoint, the VTK series (`.pvd`, `.vtu`), the points layout (`*_points.csv`), the plots,
@@ -61,6 +65,10 @@ pub fn written_by_stiction(name: &str) -> bool {
     }
     let ext = |e: &str| name.strip_suffix(e);
     if [".pvd", ".vtu", ".tmp"].iter().any(|e| name.ends_with(e)) || ext("_points.csv").is_some() {
+        return true;
+    }
+    // a fit's fitted case files
+    if name.starts_with("fitted-") && name.ends_with(".toml") {
         return true;
     }
     match ext(".png").or_else(|| ext(".svg")) {

@@ -139,6 +139,7 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
     lines
 }
 
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -154,32 +155,4 @@ mod tests {
         assert_eq!(significant(974.79), "974.8");
         assert_eq!(significant(0.0250), "0.02500");
     }
-}
-
-/// The lines `stiction ensemble` prints: members, failures, and each quantity's mean +- the 95%
-/// confidence half width (and the standard deviation), 4 significant figures.
-pub fn ensemble_lines(a: &crate::ensemble::aggregate::EnsembleAggregate) -> Vec<String> {
-    let mut lines = vec![format!(
-        "ensemble {}: {} of {} members completed (varied: {})",
-        a.case,
-        a.completed,
-        a.members,
-        a.varied.join(", ")
-    )];
-    for o in a.outcomes.iter().filter(|o| !o.completed()) {
-        lines.push(format!("  excluded {}: {}", o.folder, o.error.as_deref().unwrap_or(&o.status)));
-    }
-    let unit = &a.force_unit;
-    for s in &a.statistics {
-        // forces with the case's force unit rescaled (e.g. nN -> uN), anything else as it is
-        let is_force =
-            matches!(s.quantity.rsplit('.').next(), Some("max_force" | "pull_off_force" | "most_tensile_force"));
-        let show = |v: f64| if is_force { force(v, unit) } else { significant(v) };
-        let ci = s.ci95_half_width.map_or(String::new(), |h| format!(" +- {} (95%)", show(h)));
-        let std = s.std.map_or(String::new(), |d| format!(", std {}", show(d)));
-        lines.push(format!("  {}: {}{ci}{std}, n {}", s.quantity, show(s.mean), s.n));
-    }
-    lines
-        .push("  aggregate: ensemble.json, ensemble.csv, ensemble_{loading,unloading}.csv, ensemble_*.png/.svg".into());
-    lines
 }

@@ -32,7 +32,11 @@ fn modules(root: &Path) -> BTreeMap<String, PathBuf> {
 /// The modules `module` (in `file`) uses, among `all`.
 fn uses(module: &str, file: &Path, all: &BTreeMap<String, PathBuf>) -> BTreeSet<String> {
     let text = std::fs::read_to_string(file).unwrap();
-    let code = text.split("#[cfg(test)]\nmod tests {").next().unwrap();
+    // the test module left out, up to its closing brace (code after it still counts)
+    let code = match text.split_once("#[cfg(test)]\nmod tests {") {
+        Some((before, after)) => format!("{before}{}", after.split_once("\n}\n").map_or("", |(_, rest)| rest)),
+        None => text.clone(),
+    };
     let mut out = BTreeSet::new();
     let parent: Vec<&str> = module.split("::").filter(|p| !p.is_empty()).collect();
     // `super::` of "path::driver" (path/driver.rs or path/driver/mod.rs) is "path"

@@ -43,27 +43,44 @@ pub fn run_members(
     budget: ThreadBudget,
     report: &(dyn Fn(&MemberOutcome) + Sync),
 ) -> Vec<MemberOutcome> {
+    let jobs: Vec<(&MemberContext, &Member)> = members.iter().map(|m| (context, m)).collect();
+    let mut outcomes: Vec<MemberOutcome> = run_jobs(&jobs, budget, report).into_iter().flatten().collect();
+    outcomes.sort_by_key(|o| o.index);
+    outcomes
+}
+
+/// Runs `jobs` (each a member of its own context: runs of different cases, as a fit makes) with
+/// `budget`; the outcomes come back in the order of `jobs`, None for a job that never started:
+/// after a Ctrl-C (any job's context's flag) no further job starts.
+pub fn run_jobs(
+    jobs: &[(&MemberContext, &Member)],
+    budget: ThreadBudget,
+    report: &(dyn Fn(&MemberOutcome) + Sync),
+) -> Vec<Option<MemberOutcome>> {
     let next = AtomicUsize::new(0);
     let outcomes = Mutex::new(Vec::new());
-    let interrupted = || context.interrupt.as_ref().is_some_and(|f| f.load(Ordering::SeqCst));
+    let interrupted = || jobs.iter().any(|(c, _)| c.interrupt.as_ref().is_some_and(|f| f.load(Ordering::SeqCst)));
     std::thread::scope(|scope| {
-        for _ in 0..budget.concurrent.min(members.len()) {
+        for _ in 0..budget.concurrent.min(jobs.len()) {
             scope.spawn(|| {
                 loop {
                     let i = next.fetch_add(1, Ordering::SeqCst);
-                    if i >= members.len() || interrupted() {
+                    if i >= jobs.len() || interrupted() {
                         break;
                     }
-                    let outcome = run_member(context, &members[i], budget.threads);
+                    let (context, member) = jobs[i];
+                    let outcome = run_member(context, member, budget.threads);
                     report(&outcome);
-                    outcomes.lock().expect("outcome list").push(outcome);
+                    outcomes.lock().expect("outcome list").push((i, outcome));
                 }
             });
         }
     });
-    let mut outcomes = outcomes.into_inner().expect("outcome list");
-    outcomes.sort_by_key(|o| o.index);
-    outcomes
+    let mut ordered: Vec<Option<MemberOutcome>> = vec![None; jobs.len()];
+    for (i, o) in outcomes.into_inner().expect("outcome list") {
+        ordered[i] = Some(o);
+    }
+    ordered
 }
 
 #[cfg(test)]

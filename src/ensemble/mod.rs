@@ -259,3 +259,31 @@ pub fn announce(prepared: &Prepared, how: &str) {
         prepared.root.display()
     );
 }
+
+/// The lines `stiction ensemble` prints: members, failures, and each quantity's mean +- the 95%
+/// confidence half width (and the standard deviation), 4 significant figures.
+pub fn lines(a: &EnsembleAggregate) -> Vec<String> {
+    let mut lines = vec![format!(
+        "ensemble {}: {} of {} members completed (varied: {})",
+        a.case,
+        a.completed,
+        a.members,
+        a.varied.join(", ")
+    )];
+    for o in a.outcomes.iter().filter(|o| !o.completed()) {
+        lines.push(format!("  excluded {}: {}", o.folder, o.error.as_deref().unwrap_or(&o.status)));
+    }
+    let unit = &a.force_unit;
+    for s in &a.statistics {
+        // forces with the case's force unit rescaled (e.g. nN -> uN), anything else as it is
+        let is_force =
+            matches!(s.quantity.rsplit('.').next(), Some("max_force" | "pull_off_force" | "most_tensile_force"));
+        let show = |v: f64| if is_force { crate::report::force(v, unit) } else { crate::report::significant(v) };
+        let ci = s.ci95_half_width.map_or(String::new(), |h| format!(" +- {} (95%)", show(h)));
+        let std = s.std.map_or(String::new(), |d| format!(", std {}", show(d)));
+        lines.push(format!("  {}: {}{ci}{std}, n {}", s.quantity, show(s.mean), s.n));
+    }
+    lines
+        .push("  aggregate: ensemble.json, ensemble.csv, ensemble_{loading,unloading}.csv, ensemble_*.png/.svg".into());
+    lines
+}
