@@ -198,6 +198,17 @@ fn bad_fit_input_exits_2_naming_the_key_or_line() {
         (fit_file("key = \"materials.ru.youngs_modulos\"\nstart = 300.0\nbounds = [50.0, 2000.0]", &curve(&good_curve)), "key 'parameters.0.key'"),
         (fit_file(w, &curve(&beyond)), "outside the run's loading branch"),
     ];
+    // --resume on a folder that holds no fit, or a fit of something else
+    let good = write("good.toml", &fit_file(w, &curve(&good_curve)));
+    let (code, _, stderr) = fit(&good, &dir.join("no-such-fit"), &["--resume"]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("holds no fit to resume"), "{stderr}");
+    let other = dir.join("other-fit");
+    std::fs::create_dir_all(&other).unwrap();
+    std::fs::write(other.join("fit-plan.json"), r#"{"fingerprint": "0123", "fit_file": "x.toml"}"#).unwrap();
+    let (code, _, stderr) = fit(&good, &other, &["--resume"]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("holds a fit of another fit file"), "{stderr}");
     for (k, (text, expected)) in cases.iter().enumerate() {
         let file = write(&format!("bad-{k}.toml"), text);
         let (code, stdout, stderr) = fit(&file, &dir.join(format!("out-{k}")), &[]);

@@ -12,8 +12,8 @@
 //! - [`output`]: the fitted case files and the plots;
 //! - `mpi` (cargo feature `mpi`): the runs spread over MPI ranks.
 //!
-//! The folder of a fit holds `fit-plan.json` (the fingerprint of the fit file and its target
-//! files), `runs/` (every run), `fit_history.csv` (every parameter vector evaluated), and at the
+//! The folder of a fit holds `fit-plan.json` (the fingerprint of the fit file, its target
+//! files and its cases), `runs/` (every run), `fit_history.csv` (every parameter vector evaluated), and at the
 //! end `fit.json`, `fitted-<case>.toml` and `fit_<k>.png/.svg`. A fit stopped by Ctrl-C, or
 //! killed, goes on with `--resume`: the optimizer starts again from the start values and finds
 //! the runs it asks for already in `runs/` (the path is deterministic), so it replays to where
