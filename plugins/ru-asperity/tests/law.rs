@@ -137,3 +137,91 @@ fn bad_calibrations_are_refused_naming_the_key() {
     let e = Calibration::parse("format = \"x\"").unwrap_err();
     assert!(e.contains("missing field") || e.contains("format"), "{e}");
 }
+
+/// The law's parameters in declaration order: expected_work_of_adhesion, ramp, then the
+/// surrogate's loading scale, length, stiffness, pull-off scale (0: by w) and stretch.
+fn parameters(surrogate: [f64; 5]) -> Vec<f64> {
+    let mut p = vec![0.0, 0.05];
+    p.extend(surrogate);
+    p
+}
+
+const DEFAULTS: [f64; 5] = [surrogate::LOADING_SCALE, surrogate::LOADING_LENGTH, surrogate::STIFFNESS, 0.0, 1.0];
+
+fn shipped(name: &str) -> String {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/ru-rough-sphere/calibrations");
+    std::fs::read_to_string(dir.join(name)).unwrap()
+}
+
+/// A surrogate config file with the parameters at their defaults gives the shipped calibration
+/// (`stiction calibrate` of `stiction surrogate-table`) to the last digit.
+#[test]
+fn the_surrogate_config_with_default_parameters_is_the_shipped_calibration() {
+    use stiction_law_sdk::Law;
+    for w in [1, 3, 6] {
+        let law = stiction_law_ru_asperity::RuAsperity::create(
+            &parameters(DEFAULTS),
+            &shipped(&format!("ru-surrogate-model-w{w}.toml")),
+        )
+        .unwrap();
+        let fitted = Calibration::parse(&shipped(&format!("ru-surrogate-w{w}.toml"))).unwrap();
+        assert_eq!(law.model.calibration.loading, fitted.loading, "w = {w}");
+        assert_eq!(law.model.calibration.unloading, fitted.unloading, "w = {w}");
+    }
+}
+
+/// Changed surrogate parameters change the law as the surrogate's formulas say: the unloading
+/// (a cubic in d, fitted by 5th-order polynomials) within 0.01 nN of the formula with twice
+/// the pull-off scale and a longer stretch, the loading within 3% of its range with another
+/// scale, length and stiffness.
+#[test]
+fn surrogate_parameters_change_the_law_as_the_formulas_say() {
+    use stiction_law_ru_asperity::polynomial;
+    use stiction_law_sdk::Law;
+    let given = [300.0, 0.6, 40.0, 800.0, 1.5];
+    let law = stiction_law_ru_asperity::RuAsperity::create(&parameters(given), &shipped("ru-surrogate-model-w6.toml"))
+        .unwrap();
+    let s = surrogate::Surrogate {
+        work_of_adhesion: 6.0,
+        loading_scale: 300.0,
+        loading_length: 0.6,
+        stiffness: 40.0,
+        pull_off_scale: 800.0,
+        stretch: 1.5,
+    };
+    let c = &law.model.calibration;
+    for u in &c.unloading {
+        let e = s.separation(u.d_max);
+        assert!((u.d_end - e).abs() < 1e-6, "{} against {e}", u.d_end);
+        for k in 0..=20 {
+            let d = e + (u.d_max - e) * k as f64 / 20.0;
+            let (f, _) = s.unloading(u.d_max, d);
+            assert!((polynomial::value(&u.force, d) - f).abs() < 1e-2, "from {} at {d}", u.d_max);
+        }
+    }
+    let range = s.loading_force(2.0) - s.loading_force(-0.25);
+    for k in 0..=20 {
+        let d = -0.25 + 2.25 * k as f64 / 20.0;
+        assert!((polynomial::value(&c.loading.force, d) - s.loading_force(d)).abs() < 0.03 * range, "{d}");
+    }
+    // and the pull-off from the largest maximum is about twice the default's
+    let default = surrogate::Surrogate::for_work_of_adhesion(6.0);
+    let most_tensile = |s: &surrogate::Surrogate| {
+        let e = s.separation(2.0);
+        (0..=400).map(|k| s.unloading(2.0, e + (2.0 - e) * k as f64 / 400.0).0).fold(f64::INFINITY, f64::min)
+    };
+    let ratio = most_tensile(&s) / most_tensile(&default);
+    assert!((1.6..2.4).contains(&ratio), "{ratio}");
+}
+
+/// A surrogate parameter with a fitted calibration (which it cannot change) is refused by name.
+#[test]
+fn a_surrogate_parameter_with_a_fitted_calibration_is_refused() {
+    use stiction_law_sdk::Law;
+    let mut given = DEFAULTS;
+    given[3] = 500.0;
+    let e = stiction_law_ru_asperity::RuAsperity::create(&parameters(given), &shipped("ru-surrogate-w6.toml"))
+        .err()
+        .unwrap();
+    assert!(e.contains("surrogate_pull_off_scale") && e.contains("stiction-asperity-surrogate-1"), "{e}");
+}
