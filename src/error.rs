@@ -38,7 +38,9 @@ pub enum StictionError {
     FitKey { path: PathBuf, key: String, message: String },
     #[error("target file '{path}'{}: {message}", if *line > 0 { format!(", line {line}") } else { String::new() })]
     TargetFile { path: PathBuf, line: usize, message: String },
-    #[error("the fit stopped: {message} (every run so far and fit_history.csv are in '{out}'; the same command with --resume goes on)")]
+    #[error(
+        "the fit stopped: {message} (every run so far and fit_history.csv are in '{out}'; the same command with --resume goes on)"
+    )]
     FitFailed { message: String, out: PathBuf },
     #[error("fit interrupted; every completed run is in '{out}': the same command with --resume goes on from there")]
     FitInterrupted { out: PathBuf },

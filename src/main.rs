@@ -670,7 +670,8 @@ fn main() -> ExitCode {
             run_ensemble(&case, &sets, &options)
         }
         Command::Fit { fit, out, resume, overwrite, quiet } => (|| {
-            let options = stiction::fit::FitOptions { out, resume, overwrite, interrupt: Some(interrupt_on_ctrl_c()), quiet };
+            let options =
+                stiction::fit::FitOptions { out, resume, overwrite, interrupt: Some(interrupt_on_ctrl_c()), quiet };
             #[cfg(feature = "mpi")]
             let report = if stiction::ensemble::mpi::launched_under_mpi() {
                 stiction::fit::mpi::run_fit_mpi(&fit, &options)?

@@ -139,7 +139,6 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
     lines
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -186,16 +186,37 @@ fn bad_fit_input_exits_2_naming_the_key_or_line() {
     let beyond = write("beyond.csv", "approach,force\n0.5,100\n5.0,200\n");
     let cases: Vec<(String, &str)> = vec![
         (fit_file(w, &curve(&good_curve)) + "colour = 1\n", "colour"),
-        (fit_file("key = \"interfaces.0.parameters.w\"\nstart = 1.3\nbounds = [5.0, 0.2]", &curve(&good_curve)), "parameters.0.bounds"),
-        (fit_file("key = \"interfaces.0.parameters.w\"\nstart = 7.0\nbounds = [0.2, 5.0]", &curve(&good_curve)), "parameters.0.start"),
-        (fit_file("key = \"interfaces.0.parameters.w\"\nstart = 1.3\nbounds = [-1.0, 5.0]\nlog = true", &curve(&good_curve)), "positive lower bound"),
+        (
+            fit_file("key = \"interfaces.0.parameters.w\"\nstart = 1.3\nbounds = [5.0, 0.2]", &curve(&good_curve)),
+            "parameters.0.bounds",
+        ),
+        (
+            fit_file("key = \"interfaces.0.parameters.w\"\nstart = 7.0\nbounds = [0.2, 5.0]", &curve(&good_curve)),
+            "parameters.0.start",
+        ),
+        (
+            fit_file(
+                "key = \"interfaces.0.parameters.w\"\nstart = 1.3\nbounds = [-1.0, 5.0]\nlog = true",
+                &curve(&good_curve),
+            ),
+            "positive lower bound",
+        ),
         (fit_file(w, &curve(&empty)), "is empty"),
         (fit_file(w, &curve(&malformed)), "line 3"),
         (fit_file(w, "summary = \"pull_of_force\"\nvalue = -1100.0"), "targets.0.summary"),
         (fit_file(w, "summary = \"pull_off_force\""), "targets.0.value"),
         (fit_file(w, &(curve(&good_curve) + "\nsigma = -1")), "targets.0.sigma"),
-        (fit_file(w, "case = \"t\"\nsummary = \"max_force\"\nvalue = 1.0").replacen("case = \"s\"\n", "", 1), "targets.0.case"),
-        (fit_file("key = \"materials.ru.youngs_modulos\"\nstart = 300.0\nbounds = [50.0, 2000.0]", &curve(&good_curve)), "key 'parameters.0.key'"),
+        (
+            fit_file(w, "case = \"t\"\nsummary = \"max_force\"\nvalue = 1.0").replacen("case = \"s\"\n", "", 1),
+            "targets.0.case",
+        ),
+        (
+            fit_file(
+                "key = \"materials.ru.youngs_modulos\"\nstart = 300.0\nbounds = [50.0, 2000.0]",
+                &curve(&good_curve),
+            ),
+            "key 'parameters.0.key'",
+        ),
         (fit_file(w, &curve(&beyond)), "outside the run's loading branch"),
     ];
     // --resume on a folder that holds no fit, or a fit of something else
@@ -213,7 +234,10 @@ fn bad_fit_input_exits_2_naming_the_key_or_line() {
         let file = write(&format!("bad-{k}.toml"), text);
         let (code, stdout, stderr) = fit(&file, &dir.join(format!("out-{k}")), &[]);
         assert_eq!(code, Some(2), "case {k} ({expected}): {stdout}{stderr}");
-        assert!(stderr.contains(expected) && !stderr.contains("panicked"), "case {k}: expected '{expected}' in: {stderr}");
+        assert!(
+            stderr.contains(expected) && !stderr.contains("panicked"),
+            "case {k}: expected '{expected}' in: {stderr}"
+        );
     }
 }
 

@@ -332,7 +332,8 @@ pub fn weighted_residuals(spec: &FitSpec, outputs: &[RunOutputs]) -> Result<Poin
         match &t.kind {
             TargetKind::Curve(curve) => {
                 let values = outputs[t.case].curve_values(curve, interface).map_err(named)?;
-                let rms = (curve.points.iter().map(|p| p.value * p.value).sum::<f64>() / curve.points.len() as f64).sqrt();
+                let rms =
+                    (curve.points.iter().map(|p| p.value * p.value).sum::<f64>() / curve.points.len() as f64).sqrt();
                 for (p, v) in curve.points.iter().zip(&values) {
                     let scale = p.sigma.or(t.sigma).unwrap_or(rms);
                     residuals.push(sqrt_w * (v - p.value) / scale);
@@ -374,7 +375,14 @@ mod tests {
         read
     }
 
-    fn target(case: usize, field: &str, value: f64, ratio_to: Option<usize>, sigma: Option<f64>, weight: f64) -> Target {
+    fn target(
+        case: usize,
+        field: &str,
+        value: f64,
+        ratio_to: Option<usize>,
+        sigma: Option<f64>,
+        weight: f64,
+    ) -> Target {
         Target {
             name: field.into(),
             case,

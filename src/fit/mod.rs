@@ -31,9 +31,9 @@ pub mod targets;
 use crate::error::{Result, StictionError};
 use evaluate::{Evaluator, Outcome, Purpose};
 use levenberg_marquardt::LevenbergMarquardt;
-use sha2::Digest;
 use problem::{FitProblem, Stop};
 use serde::Serialize;
+use sha2::Digest;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
@@ -229,9 +229,9 @@ fn fitted_header(spec: &spec::FitSpec, parameters: &[report::FittedParameter]) -
         spec.targets.iter().map(|t| t.name.as_str()).collect::<Vec<_>>().join("; ")
     );
     for p in parameters {
-        let interval = p.interval_95.map_or("not determined by the targets".to_string(), |[a, b]| {
-            format!("95% interval {a:.6e} to {b:.6e}")
-        });
+        let interval = p
+            .interval_95
+            .map_or("not determined by the targets".to_string(), |[a, b]| format!("95% interval {a:.6e} to {b:.6e}"));
         h.push_str(&format!("#   {} = {:.6e} ({interval})\n", p.key, p.value));
     }
     h.push('\n');
@@ -254,7 +254,9 @@ pub fn lines(report: &FitReport) -> Vec<String> {
     )];
     for p in &report.parameters {
         let interval = match p.interval_95 {
-            Some([a, b]) => format!("95% interval {} to {}", crate::report::significant(a), crate::report::significant(b)),
+            Some([a, b]) => {
+                format!("95% interval {} to {}", crate::report::significant(a), crate::report::significant(b))
+            }
             None => "not determined by the targets".into(),
         };
         let truth = p.true_value.map_or(String::new(), |t| format!("; true value {}", crate::report::significant(t)));

@@ -54,8 +54,12 @@ enum Reply {
 
 impl Job {
     fn run(&self, interrupt: Option<Arc<AtomicBool>>) -> MemberOutcome {
-        let context =
-            MemberContext { case_path: self.case_path.clone(), sets: self.sets.clone(), root: self.root.clone(), interrupt };
+        let context = MemberContext {
+            case_path: self.case_path.clone(),
+            sets: self.sets.clone(),
+            root: self.root.clone(),
+            interrupt,
+        };
         run_member(&context, &self.member, self.threads)
     }
 }

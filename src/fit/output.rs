@@ -104,7 +104,13 @@ pub fn plot_curves(
         let mut series: Vec<Series> = Vec::new();
         for (branch, name, colour) in [(Branch::Loading, "loading", BLUE), (Branch::Unloading, "unloading", RED)] {
             let on = |values: &[f64]| -> Vec<(f64, f64)> {
-                curve.points.iter().zip(values).filter(|(p, _)| p.branch == branch).map(|(p, v)| (p.approach, *v)).collect()
+                curve
+                    .points
+                    .iter()
+                    .zip(values)
+                    .filter(|(p, _)| p.branch == branch)
+                    .map(|(p, v)| (p.approach, *v))
+                    .collect()
             };
             if on(&measured).is_empty() {
                 continue;

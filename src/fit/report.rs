@@ -78,7 +78,13 @@ pub fn uncertainty(spec: &FitSpec, j: &DMatrix<f64>, cost: f64) -> Uncertainty {
     let keys: Vec<&str> = spec.parameters.iter().map(|p| p.key.as_str()).collect();
     let absolute = spec.absolute_sigma();
     let dof = m.saturating_sub(n);
-    let residual_variance = if absolute { 1.0 } else if dof > 0 { cost / dof as f64 } else { f64::NAN };
+    let residual_variance = if absolute {
+        1.0
+    } else if dof > 0 {
+        cost / dof as f64
+    } else {
+        f64::NAN
+    };
     let quantile = if absolute || dof == 0 {
         1.959_963_984_540_054
     } else {

@@ -225,9 +225,10 @@ pub fn load(path: &Path) -> Result<FitSpec> {
         toml::from_str(&text).map_err(|e| StictionError::Fit { path: path.to_path_buf(), message: e.to_string() })?;
     let bad = |key: String, message: String| StictionError::FitKey { path: path.to_path_buf(), key, message };
     let dir = path.parent().unwrap_or(Path::new("."));
-    let name = file.name.clone().unwrap_or_else(|| {
-        path.file_stem().map_or_else(|| "fit".into(), |s| s.to_string_lossy().into_owned())
-    });
+    let name = file
+        .name
+        .clone()
+        .unwrap_or_else(|| path.file_stem().map_or_else(|| "fit".into(), |s| s.to_string_lossy().into_owned()));
 
     if file.cases.is_empty() {
         return Err(bad("cases".into(), "needs at least one [[cases]] entry".into()));
@@ -246,142 +247,30 @@ pub fn load(path: &Path) -> Result<FitSpec> {
         }
         cases.push(FitCase { name: c.name.clone(), file: file_path, set: c.set.clone() });
     }
-    let case_index = |key: String, name: &str| -> Result<usize> {
-        cases.iter().position(|c| c.name == name).ok_or_else(|| {
-            let known: Vec<&str> = cases.iter().map(|c| c.name.as_str()).collect();
-            bad(key, format!("no case is named '{name}' (the cases: {})", known.join(", ")))
-        })
-    };
+    let check = Checker { path, dir, cases: &cases };
 
     if file.parameters.is_empty() {
         return Err(bad("parameters".into(), "needs at least one [[parameters]] entry".into()));
     }
     let mut parameters: Vec<Parameter> = Vec::new();
     for (i, p) in file.parameters.iter().enumerate() {
-        let key = |k: &str| format!("parameters.{i}.{k}");
-        if p.key.trim().is_empty() || p.key.split('.').any(str::is_empty) {
-            return Err(bad(key("key"), format!("'{}' is not a case key path", p.key)));
-        }
-        let [lower, upper] = p.bounds;
-        if !(lower.is_finite() && upper.is_finite()) {
-            return Err(bad(key("bounds"), format!("must be finite, got [{lower}, {upper}]")));
-        }
-        if !(lower < upper) {
-            return Err(bad(key("bounds"), format!("[{lower}, {upper}]: the lower bound must be below the upper")));
-        }
-        if p.log && !(lower > 0.0) {
-            return Err(bad(key("bounds"), format!("[{lower}, {upper}]: a log parameter needs a positive lower bound")));
-        }
-        if !(p.start > lower && p.start < upper) {
-            return Err(bad(key("start"), format!("{} is not strictly inside the bounds [{lower}, {upper}]", p.start)));
-        }
-        if let Some(t) = p.true_value
-            && !(t >= lower && t <= upper)
-        {
-            return Err(bad(key("true_value"), format!("{t} is outside the bounds [{lower}, {upper}]")));
-        }
-        let applies: Vec<usize> = match &p.cases {
-            None => (0..cases.len()).collect(),
-            Some(names) if names.is_empty() => return Err(bad(key("cases"), "names no case".into())),
-            Some(names) => names.iter().map(|n| case_index(key("cases"), n)).collect::<Result<_>>()?,
-        };
-        if let Some(other) = parameters.iter().position(|o| o.key == p.key && o.cases.iter().any(|c| applies.contains(c)))
-        {
-            return Err(bad(key("key"), format!("'{}' is already fitted by parameters.{other}", p.key)));
-        }
-        parameters.push(Parameter {
-            key: p.key.clone(),
-            start: p.start,
-            lower,
-            upper,
-            log: p.log,
-            cases: applies,
-            true_value: p.true_value,
-        });
+        let checked = check.parameter(i, p, &parameters)?;
+        parameters.push(checked);
     }
 
     if file.targets.is_empty() {
         return Err(bad("targets".into(), "needs at least one [[targets]] entry".into()));
     }
-    let (top_fields, interface_fields) = summary_fields();
+    let fields = summary_fields();
     let mut fingerprint_text = text.clone();
     let mut targets = Vec::new();
     for (i, t) in file.targets.iter().enumerate() {
-        let key = |k: &str| format!("targets.{i}.{k}");
-        let case = case_index(key("case"), &t.case)?;
-        for (value, what) in [(t.sigma, "sigma"), (t.weight, "weight")] {
-            if let Some(v) = value
-                && !(v > 0.0 && v.is_finite())
-            {
-                return Err(bad(key(what), format!("must be positive and finite, got {v}")));
-            }
-        }
-        let (kind, default_name) = match (&t.curve, &t.summary) {
-            (Some(curve), None) => {
-                for (given, what) in [(t.value.is_some(), "value"), (t.ratio_to.is_some(), "ratio_to")] {
-                    if given {
-                        return Err(bad(key(what), "belongs to a summary target, not a curve".into()));
-                    }
-                }
-                let file_path = dir.join(curve);
-                let (target, contents) = read_curve(&file_path)?;
-                fingerprint_text.push_str(&contents);
-                let name = format!("{}: {} curve ({})", t.case, target.column, curve.display());
-                (TargetKind::Curve(target), name)
-            }
-            (None, Some(field)) => {
-                if !top_fields.contains(field) && !interface_fields.contains(field) {
-                    return Err(bad(
-                        key("summary"),
-                        format!(
-                            "'{field}' is not a number of summary.json (docs/outputs.md lists them; e.g. max_force, \
-                             pull_off_force, max_contact_area, plastic_dissipation)"
-                        ),
-                    ));
-                }
-                let Some(value) = t.value else {
-                    return Err(bad(key("value"), "a summary target needs the measured value".into()));
-                };
-                if !value.is_finite() {
-                    return Err(bad(key("value"), format!("must be finite, got {value}")));
-                }
-                let ratio_to = match &t.ratio_to {
-                    Some(other) => {
-                        let j = case_index(key("ratio_to"), other)?;
-                        if j == case {
-                            return Err(bad(key("ratio_to"), "is the target's own case: the ratio would be 1".into()));
-                        }
-                        Some(j)
-                    }
-                    None => None,
-                };
-                if value == 0.0 && t.sigma.is_none() {
-                    return Err(bad(key("sigma"), "a target of value 0 needs a sigma to scale its residual".into()));
-                }
-                let name = match ratio_to {
-                    Some(j) => format!("{field} {} / {}", t.case, cases[j].name),
-                    None => format!("{}: {field}", t.case),
-                };
-                (TargetKind::Summary { field: field.clone(), value, ratio_to }, name)
-            }
-            (Some(_), Some(_)) => {
-                return Err(bad(key("curve"), "a target is either a curve or a summary number, not both".into()));
-            }
-            (None, None) => {
-                return Err(bad(format!("targets.{i}"), "needs `curve = \"file.csv\"` or `summary = \"field\"`".into()));
-            }
-        };
-        targets.push(Target {
-            name: t.name.clone().unwrap_or(default_name),
-            case,
-            interface: t.interface.clone(),
-            kind,
-            sigma: t.sigma,
-            weight: t.weight.unwrap_or(1.0),
-        });
+        targets.push(check.target(i, t, &fields, &mut fingerprint_text)?);
     }
     for (c, case) in cases.iter().enumerate() {
-        if !targets.iter().any(|t| t.case == c || matches!(t.kind, TargetKind::Summary { ratio_to: Some(j), .. } if j == c))
+        if !targets
+            .iter()
+            .any(|t| t.case == c || matches!(t.kind, TargetKind::Summary { ratio_to: Some(j), .. } if j == c))
         {
             return Err(bad("cases".into(), format!("case '{}' has no target: nothing would be compared", case.name)));
         }
@@ -412,15 +301,164 @@ pub fn load(path: &Path) -> Result<FitSpec> {
     }
     use sha2::Digest;
     let fingerprint = format!("{:x}", sha2::Sha256::digest(fingerprint_text.as_bytes()));
-    Ok(FitSpec {
-        path: path.to_path_buf(),
-        name,
-        cases,
-        parameters,
-        targets,
-        optimizer: file.optimizer,
-        fingerprint,
-    })
+    Ok(FitSpec { path: path.to_path_buf(), name, cases, parameters, targets, optimizer: file.optimizer, fingerprint })
+}
+
+/// What the checks of one entry need: the file (for errors), its folder and the checked cases.
+struct Checker<'a> {
+    path: &'a Path,
+    dir: &'a Path,
+    cases: &'a [FitCase],
+}
+
+impl Checker<'_> {
+    fn bad(&self, key: String, message: String) -> StictionError {
+        StictionError::FitKey { path: self.path.to_path_buf(), key, message }
+    }
+
+    fn case_index(&self, key: String, name: &str) -> Result<usize> {
+        self.cases.iter().position(|c| c.name == name).ok_or_else(|| {
+            let known: Vec<&str> = self.cases.iter().map(|c| c.name.as_str()).collect();
+            self.bad(key, format!("no case is named '{name}' (the cases: {})", known.join(", ")))
+        })
+    }
+
+    /// Parameter `i`, checked against its bounds, the cases and the `earlier` parameters.
+    fn parameter(&self, i: usize, p: &FitParameter, earlier: &[Parameter]) -> Result<Parameter> {
+        let key = |k: &str| format!("parameters.{i}.{k}");
+        if p.key.trim().is_empty() || p.key.split('.').any(str::is_empty) {
+            return Err(self.bad(key("key"), format!("'{}' is not a case key path", p.key)));
+        }
+        let [lower, upper] = p.bounds;
+        if !(lower.is_finite() && upper.is_finite()) {
+            return Err(self.bad(key("bounds"), format!("must be finite, got [{lower}, {upper}]")));
+        }
+        if !(lower < upper) {
+            return Err(self.bad(key("bounds"), format!("[{lower}, {upper}]: the lower bound must be below the upper")));
+        }
+        if p.log && !(lower > 0.0) {
+            return Err(
+                self.bad(key("bounds"), format!("[{lower}, {upper}]: a log parameter needs a positive lower bound"))
+            );
+        }
+        if !(p.start > lower && p.start < upper) {
+            return Err(
+                self.bad(key("start"), format!("{} is not strictly inside the bounds [{lower}, {upper}]", p.start))
+            );
+        }
+        if let Some(t) = p.true_value
+            && !(t >= lower && t <= upper)
+        {
+            return Err(self.bad(key("true_value"), format!("{t} is outside the bounds [{lower}, {upper}]")));
+        }
+        let applies: Vec<usize> = match &p.cases {
+            None => (0..self.cases.len()).collect(),
+            Some(names) if names.is_empty() => return Err(self.bad(key("cases"), "names no case".into())),
+            Some(names) => names.iter().map(|n| self.case_index(key("cases"), n)).collect::<Result<_>>()?,
+        };
+        if let Some(other) = earlier.iter().position(|o| o.key == p.key && o.cases.iter().any(|c| applies.contains(c)))
+        {
+            return Err(self.bad(key("key"), format!("'{}' is already fitted by parameters.{other}", p.key)));
+        }
+        Ok(Parameter {
+            key: p.key.clone(),
+            start: p.start,
+            lower,
+            upper,
+            log: p.log,
+            cases: applies,
+            true_value: p.true_value,
+        })
+    }
+
+    /// Target `i`, its file read (its text appended to `fingerprint_text`); `fields`: the
+    /// summary numbers (top level, interface).
+    fn target(
+        &self,
+        i: usize,
+        t: &TargetSpec,
+        fields: &(Vec<String>, Vec<String>),
+        fingerprint_text: &mut String,
+    ) -> Result<Target> {
+        let key = |k: &str| format!("targets.{i}.{k}");
+        let case = self.case_index(key("case"), &t.case)?;
+        for (value, what) in [(t.sigma, "sigma"), (t.weight, "weight")] {
+            if let Some(v) = value
+                && !(v > 0.0 && v.is_finite())
+            {
+                return Err(self.bad(key(what), format!("must be positive and finite, got {v}")));
+            }
+        }
+        let (kind, default_name) = match (&t.curve, &t.summary) {
+            (Some(curve), None) => {
+                for (given, what) in [(t.value.is_some(), "value"), (t.ratio_to.is_some(), "ratio_to")] {
+                    if given {
+                        return Err(self.bad(key(what), "belongs to a summary target, not a curve".into()));
+                    }
+                }
+                let file_path = self.dir.join(curve);
+                let (target, contents) = read_curve(&file_path)?;
+                fingerprint_text.push_str(&contents);
+                let name = format!("{}: {} curve ({})", t.case, target.column, curve.display());
+                (TargetKind::Curve(target), name)
+            }
+            (None, Some(field)) => {
+                if !fields.0.contains(field) && !fields.1.contains(field) {
+                    return Err(self.bad(
+                        key("summary"),
+                        format!(
+                            "'{field}' is not a number of summary.json (docs/outputs.md lists them; e.g. max_force, \
+                         pull_off_force, max_contact_area, plastic_dissipation)"
+                        ),
+                    ));
+                }
+                let Some(value) = t.value else {
+                    return Err(self.bad(key("value"), "a summary target needs the measured value".into()));
+                };
+                if !value.is_finite() {
+                    return Err(self.bad(key("value"), format!("must be finite, got {value}")));
+                }
+                let ratio_to = match &t.ratio_to {
+                    Some(other) => {
+                        let j = self.case_index(key("ratio_to"), other)?;
+                        if j == case {
+                            return Err(
+                                self.bad(key("ratio_to"), "is the target's own case: the ratio would be 1".into())
+                            );
+                        }
+                        Some(j)
+                    }
+                    None => None,
+                };
+                if value == 0.0 && t.sigma.is_none() {
+                    return Err(
+                        self.bad(key("sigma"), "a target of value 0 needs a sigma to scale its residual".into())
+                    );
+                }
+                let name = match ratio_to {
+                    Some(j) => format!("{field} {} / {}", t.case, self.cases[j].name),
+                    None => format!("{}: {field}", t.case),
+                };
+                (TargetKind::Summary { field: field.clone(), value, ratio_to }, name)
+            }
+            (Some(_), Some(_)) => {
+                return Err(self.bad(key("curve"), "a target is either a curve or a summary number, not both".into()));
+            }
+            (None, None) => {
+                return Err(
+                    self.bad(format!("targets.{i}"), "needs `curve = \"file.csv\"` or `summary = \"field\"`".into())
+                );
+            }
+        };
+        Ok(Target {
+            name: t.name.clone().unwrap_or(default_name),
+            case,
+            interface: t.interface.clone(),
+            kind,
+            sigma: t.sigma,
+            weight: t.weight.unwrap_or(1.0),
+        })
+    }
 }
 
 #[cfg(test)]

@@ -45,11 +45,8 @@ pub struct CurveTarget {
 pub fn read_curve(path: &Path) -> Result<(CurveTarget, String)> {
     let bad = |line: usize, message: String| StictionError::TargetFile { path: path.to_path_buf(), line, message };
     let text = std::fs::read_to_string(path).map_err(|e| bad(0, format!("cannot read it: {e}")))?;
-    let mut rows = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let mut rows =
+        text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
     let Some((header_line, header)) = rows.next() else {
         return Err(bad(0, "is empty: expected a header such as `approach,force` and measured rows".into()));
     };
@@ -64,7 +61,10 @@ pub fn read_curve(path: &Path) -> Result<(CurveTarget, String)> {
         _ => {
             return Err(bad(
                 header_line,
-                format!("the header '{header}' must name exactly one of {} (a file per quantity)", CURVE_COLUMNS.join(", ")),
+                format!(
+                    "the header '{header}' must name exactly one of {} (a file per quantity)",
+                    CURVE_COLUMNS.join(", ")
+                ),
             ));
         }
     };
@@ -103,7 +103,13 @@ pub fn read_curve(path: &Path) -> Result<(CurveTarget, String)> {
             }
             None => None,
         };
-        points.push(MeasuredPoint { approach: number(ia, "approach")?, value: number(iv, &column)?, branch, sigma, line });
+        points.push(MeasuredPoint {
+            approach: number(ia, "approach")?,
+            value: number(iv, &column)?,
+            branch,
+            sigma,
+            line,
+        });
     }
     if points.is_empty() {
         return Err(bad(header_line, "has a header but no measured rows".into()));
@@ -198,7 +204,11 @@ impl RunOutputs {
                 }
                 let end = branch.last().map_or(f64::NAN, |s| s.0);
                 let start = branch.first().map_or(f64::NAN, |s| s.0);
-                if p.branch == Branch::Unloading && separated && p.approach < end && curve.column != "contact_resistance" {
+                if p.branch == Branch::Unloading
+                    && separated
+                    && p.approach < end
+                    && curve.column != "contact_resistance"
+                {
                     return Ok(0.0);
                 }
                 Err(format!(
@@ -230,8 +240,11 @@ mod tests {
             pub fn new() -> Self {
                 use std::sync::atomic::{AtomicUsize, Ordering};
                 static N: AtomicUsize = AtomicUsize::new(0);
-                let p = std::env::temp_dir()
-                    .join(format!("stiction-fit-targets-{}-{}", std::process::id(), N.fetch_add(1, Ordering::SeqCst)));
+                let p = std::env::temp_dir().join(format!(
+                    "stiction-fit-targets-{}-{}",
+                    std::process::id(),
+                    N.fetch_add(1, Ordering::SeqCst)
+                ));
                 std::fs::create_dir_all(&p).unwrap();
                 Self(p)
             }
@@ -262,7 +275,11 @@ mod tests {
         let dir = folder(&history, summary);
         let outputs = RunOutputs::read(&dir.0).unwrap();
         let csv = dir.0.join("target.csv");
-        std::fs::write(&csv, "# measured\napproach,force,branch\n0.25,0,loading\n0.75,0,unloading\n-0.45,0,unloading\n-2,0,unloading\n").unwrap();
+        std::fs::write(
+            &csv,
+            "# measured\napproach,force,branch\n0.25,0,loading\n0.75,0,unloading\n-0.45,0,unloading\n-2,0,unloading\n",
+        )
+        .unwrap();
         let (curve, _) = read_curve(&csv).unwrap();
         let v = outputs.curve_values(&curve, None).unwrap();
         let expected = [2.5, 2.75, -3.25, 0.0];

@@ -81,7 +81,8 @@ impl Surrogate {
     }
 
     pub fn loading_force(&self, d: f64) -> f64 {
-        -(1.0 + 0.5 * self.work_of_adhesion) + self.loading_scale * ((d - D0) / self.loading_length).tanh()
+        -(1.0 + 0.5 * self.work_of_adhesion)
+            + self.loading_scale * ((d - D0) / self.loading_length).tanh()
             + self.stiffness * (d - D0)
     }
 
