@@ -47,10 +47,10 @@ pub fn checkpoint_path(case: &LoadedCase, out: &Path) -> Result<PathBuf> {
     if path.exists() {
         return Ok(path);
     }
-    let status = std::fs::read_to_string(out.join("summary.json"))
-        .ok()
-        .and_then(|t| serde_json::from_str::<Value>(&t).ok())
-        .and_then(|s| s["status"].as_str().map(str::to_string));
+    let summary =
+        std::fs::read_to_string(out.join("summary.json")).ok().and_then(|t| serde_json::from_str::<Value>(&t).ok());
+    let status = summary.as_ref().and_then(|s| s["status"].as_str().map(str::to_string));
+    let increments = summary.as_ref().and_then(|s| s["increments"].as_u64()).unwrap_or(0);
     let why = match status.as_deref() {
         Some("completed") => {
             "the run there completed (a completed run removes its checkpoint): there is nothing to resume".to_string()
@@ -59,8 +59,12 @@ pub fn checkpoint_path(case: &LoadedCase, out: &Path) -> Result<PathBuf> {
              \"running\": it was killed); start it afresh with --overwrite, and set output.checkpoint_minutes \
              lower to checkpoint sooner"
             .to_string(),
-        Some(other) => format!(
+        Some(other) if increments == 0 => format!(
             "the run there ended \"{other}\" before its first increment was committed; start it afresh with --overwrite"
+        ),
+        Some(other) => format!(
+            "the run there ended \"{other}\" after {increments} increments but its checkpoint is gone (a \
+             failed run keeps it: was it removed?); start it afresh with --overwrite"
         ),
         None => "no run of this case has written there; give the folder of the run to resume with --out".to_string(),
     };

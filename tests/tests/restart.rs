@@ -174,6 +174,45 @@ fn cohesive_elements_stopped_in_softening_and_resumed_write_the_same_history_as_
     );
 }
 
+/// A run that fails along a damped flow (its steps at most `solver.snap_max_steps`, too few
+/// for the snap) leaves the model past its last recorded increment: it keeps the checkpoint
+/// the flow wrote of the commit it started from, and resumed with the default limit it redoes
+/// the snap and writes the same history as a run with that limit throughout. The Lennard-Jones
+/// sphere of the first test, loaded from 1 nm apart: its second snap takes 416 flow steps.
+#[test]
+fn a_run_that_fails_along_a_damped_flow_resumes_from_the_commit_the_flow_started_from() {
+    let case = "cases/ru-sphere/smooth-lj-w3.toml";
+    let sets = [
+        "mesh.parameters.h_contact=8.0",
+        "mesh.parameters.r_fine=40.0",
+        "amplitudes.cycle.value=[-1.0, 1.0, -1.0]",
+        "output.vtk=false",
+        "solver.threads=1",
+        "solver.refactorization_cost_ratio=20",
+    ];
+    let straight_out = scratch("restart-flow-failed-straight");
+    let straight = part(case, &sets, &straight_out, false, None).unwrap_or_else(|e| panic!("{e}"));
+    let out = scratch("restart-flow-failed");
+    let few: Vec<&str> = sets.iter().copied().chain(["solver.snap_max_steps=100"]).collect();
+    let error = part(case, &few, &out, false, None).expect_err("the snap needs more flow steps").to_string();
+    assert!(error.contains("failed along the damped flow") && error.contains("--resume"), "{error}");
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"status\": \"failed\""), "{summary}");
+    assert!(out.join("restart.bin").exists(), "the failed run keeps the checkpoint of the flow's start");
+    let resumed = part(case, &sets, &out, true, None).unwrap_or_else(|e| panic!("{e}"));
+    for file in ["history.csv", "events.csv", "cycles.csv"] {
+        let (a, b) = (std::fs::read(straight_out.join(file)).unwrap(), std::fs::read(out.join(file)).unwrap());
+        assert!(
+            a == b,
+            "{file} of the resumed run differs from the straight run's ({} against {} bytes)",
+            b.len(),
+            a.len()
+        );
+    }
+    assert_eq!((resumed.increments, resumed.snaps), (straight.increments, straight.snaps), "(increments, snaps)");
+    assert!(straight.snaps >= 2, "the path snaps");
+}
+
 /// Resuming with another problem names the first key that differs; with other solver settings
 /// it goes on; a folder whose run completed has nothing to resume.
 #[test]

@@ -3,11 +3,12 @@
 //!
 //! When: at the first commit at least [`crate::checkpoint::CheckpointPlan::interval`] after the last checkpoint,
 //! between increments (no crossing under way, no cut since the commit), and when the run fails
-//! or is stopped, from its last committed increment (except where a failed damped-flow snap
-//! left the model past it: the last checkpoint written stays). Inside a damped-flow snap, at
-//! the first accepted flow step at least the interval after the last checkpoint, and when the
-//! run is stopped there: the checkpoint then also holds the snap under way
-//! ([`super::snapping`]). A completed run removes its checkpoint.
+//! or is stopped, from its last committed increment. A damped-flow snap first writes one of
+//! the commit it starts from (a failed flow leaves the model past that commit, and the
+//! checkpoint written then stays the one to resume); inside it, at the first accepted flow
+//! step at least the interval after the last checkpoint, and when the run is stopped there:
+//! the checkpoint then also holds the snap under way ([`super::snapping`]). A completed run
+//! removes its checkpoint.
 //!
 //! What: everything the rest of the run depends on: the model's committed state
 //! ([`crate::model::ModelState`]); the driver's (time, step, the load control's increment and
@@ -107,11 +108,11 @@ impl Driver<'_> {
         if due { self.write_checkpoint(None) } else { Ok(()) }
     }
 
-    /// Writes the checkpoint of the committed state (the run ends with `ending`, if given)
-    /// and makes the nonlinear solver start afresh. Nothing is written before the first commit
-    /// unless a snap is under way (else the run would start over from the same state), nor
-    /// where a failed damped flow left the model past the last recorded increment (the last
-    /// checkpoint stays the one to resume).
+    /// Writes the checkpoint of the committed state (the run ends with `ending`, if given).
+    /// Nothing is written before the first commit unless a snap is under way (else the run
+    /// would start over from the same state), nor where a failed damped flow left the model
+    /// past the last recorded increment (the checkpoint the flow wrote at its start stays the
+    /// one to resume).
     pub(super) fn write_checkpoint(&mut self, ending: Option<&Ending>) -> Result<()> {
         let Some(plan) = &self.plan.checkpoint else { return Ok(()) };
         let snap_under_way = self.snap_in_progress.as_ref().is_some_and(|s| s.flow.is_some());

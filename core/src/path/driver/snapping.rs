@@ -9,7 +9,11 @@
 //! ([`super::RunPlan::stop_after_flow_steps`]): the checkpoint then holds the snap under way
 //! (`SnapInProgress`: its target, its reason, and the flow's [`FlowState`]) beside the
 //! model's committed state, which is the flow's last committed step. A run resumed from it
-//! goes on with the same flow (`Driver::resume_snap`), as if it had not stopped.
+//! goes on with the same flow (`Driver::resume_snap`), as if it had not stopped. A flow commits
+//! its steps into the model, past the run's last recorded increment, so a run that fails along
+//! it cannot checkpoint that increment any more: a fresh flow first writes a checkpoint of the
+//! commit it starts from (unless the last one is of it), and a run resumed from that redoes
+//! the snap from its start.
 
 use super::{Driver, Flow, SnapMethod, Via};
 use crate::error::{CoreError, Result};
@@ -288,7 +292,14 @@ impl Driver<'_> {
     ) -> Result<std::result::Result<Option<FlowReport>, IncrementFailure>> {
         let mut start = match self.snap_in_progress.as_mut().and_then(|s| s.flow.take()) {
             Some(state) => FlowStart::Resumed(Box::new(state)),
-            None => FlowStart::Fresh(self.scales()),
+            None => {
+                // the flow commits its steps into the model: a run that fails along it can
+                // only resume from a checkpoint of the commit it starts from
+                if self.plan.checkpoint.is_some() && self.summary.increments > self.last_checkpoint.1 {
+                    self.write_checkpoint(None)?;
+                }
+                FlowStart::Fresh(self.scales())
+            }
         };
         loop {
             let interrupt = self.plan.interrupt.clone();
