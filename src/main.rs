@@ -593,17 +593,22 @@ fn calibrate(table: &std::path::Path, output: &std::path::Path, lo: usize, uo: u
     ExitCode::SUCCESS
 }
 
-/// A flag set by the first Ctrl-C (SIGINT, or SIGTERM as a batch system sends): the run stops after the increment in progress and
-/// writes its summary. A second Ctrl-C ends the program at once (exit status 130); the files of
-/// every committed increment are complete either way, as each is written atomically.
-fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
+/// What a run, an ensemble or a fit does on a first Ctrl-C.
+const INCREMENT: &str = "finishing the current increment";
+
+/// A flag set by the first Ctrl-C (SIGINT, or SIGTERM as a batch system sends): a run stops
+/// after the increment in progress and writes its summary; gmsh, while it meshes, is stopped.
+/// A second Ctrl-C ends the program at once (exit status 130); the files of every committed
+/// increment are complete either way, as each is written atomically. `then` says what the
+/// program does next.
+fn interrupt_on_ctrl_c(then: &'static str) -> Arc<AtomicBool> {
     let flag = stiction::resources::interrupt_flag();
     let seen = flag.clone();
     let installed = ctrlc::set_handler(move || {
         if seen.swap(true, Ordering::SeqCst) {
             std::process::exit(130);
         }
-        eprintln!("\nstiction: interrupted; finishing the current increment (Ctrl-C again to stop at once)");
+        eprintln!("\nstiction: interrupted; {then} (Ctrl-C again to stop at once)");
     });
     if let Err(e) = installed {
         eprintln!("warning: Ctrl-C will end the run without a summary: {e}");
@@ -643,7 +648,7 @@ fn main() -> ExitCode {
                 progress: !quiet && std::io::stderr().is_terminal(),
                 progress_label: None,
                 overwrite,
-                interrupt: Some(interrupt_on_ctrl_c()),
+                interrupt: Some(interrupt_on_ctrl_c(INCREMENT)),
                 resume,
                 stop_after_increments: stop_after,
                 stop_after_flow_steps: None,
@@ -664,14 +669,19 @@ fn main() -> ExitCode {
                 out,
                 threads_per_member,
                 concurrent_members,
-                interrupt: Some(interrupt_on_ctrl_c()),
+                interrupt: Some(interrupt_on_ctrl_c(INCREMENT)),
                 quiet,
             };
             run_ensemble(&case, &sets, &options)
         }
         Command::Fit { fit, out, resume, overwrite, quiet } => (|| {
-            let options =
-                stiction::fit::FitOptions { out, resume, overwrite, interrupt: Some(interrupt_on_ctrl_c()), quiet };
+            let options = stiction::fit::FitOptions {
+                out,
+                resume,
+                overwrite,
+                interrupt: Some(interrupt_on_ctrl_c(INCREMENT)),
+                quiet,
+            };
             #[cfg(feature = "mpi")]
             let report = if stiction::ensemble::mpi::launched_under_mpi() {
                 stiction::fit::mpi::run_fit_mpi(&fit, &options)?
@@ -686,6 +696,8 @@ fn main() -> ExitCode {
             Ok(())
         })(),
         Command::Check { case, sets } => (|| {
+            // a check meshes too: interrupted, it stops gmsh rather than leaving it running
+            interrupt_on_ctrl_c("stopping the check");
             let loaded = case::load(&case, &sets)?;
             let built = stiction::build::build(&loaded)?;
             let m = &built.model;

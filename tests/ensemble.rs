@@ -270,6 +270,10 @@ fn mpi_ranks_give_the_serial_aggregate_to_the_last_digit() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{stderr}");
     assert!(stderr.contains("2 MPI ranks"), "the members did not spread over the ranks: {stderr}");
+    assert!(
+        stderr.contains("estimate from member-00") && stderr.contains("members left need about"),
+        "rank 0 gives no estimate of the members left: {stderr}"
+    );
     let a = std::fs::read(serial.join("ensemble.json")).unwrap();
     let b = std::fs::read(parallel.join("ensemble.json")).unwrap();
     assert!(a == b, "ensemble.json differs between the serial and the MPI run");

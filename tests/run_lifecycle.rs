@@ -107,15 +107,11 @@ fn gmsh_running_with(scale: &str) -> bool {
     })
 }
 
-/// SIGTERM (a batch system's stop) while gmsh meshes: gmsh is stopped with the run, nothing is
-/// cached, no output folder is made, and the exit status is 130.
-#[test]
-fn sigterm_while_meshing_stops_gmsh_too() {
-    let out = scratch("sigterm-meshing");
-    // a size factor no other test uses, so that its gmsh is known by its command line
-    let scale = "0.0301";
-    let mut child = stiction(&["run", "cases/ru-sphere/smooth-lj-w1.toml", "--quiet", "--out"])
-        .arg(&out)
+/// Starts `stiction ARGS --set mesh.size_factor=SCALE` (a size factor no other test uses, so
+/// that its gmsh is known by its command line), sends SIGTERM once gmsh runs, and returns the
+/// exit status and standard error; gmsh must have stopped with it.
+fn sigterm_while_gmsh_runs(args: &[&str], scale: &str) -> (Option<i32>, String) {
+    let mut child = stiction(args)
         .args(["--set", &format!("mesh.size_factor={scale}")])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -123,18 +119,36 @@ fn sigterm_while_meshing_stops_gmsh_too() {
         .unwrap();
     let start = Instant::now();
     while !gmsh_running_with(scale) {
-        assert!(child.try_wait().unwrap().is_none(), "the run ended before gmsh started");
+        assert!(child.try_wait().unwrap().is_none(), "stiction ended before gmsh started");
         assert!(start.elapsed() < Duration::from_secs(60), "gmsh did not start within 60 s");
         std::thread::sleep(Duration::from_millis(50));
     }
     std::thread::sleep(Duration::from_millis(500));
     signal(&child, "TERM");
     let result = child.wait_with_output().unwrap();
-    let stderr = String::from_utf8_lossy(&result.stderr);
-    assert_eq!(result.status.code(), Some(130), "{stderr}");
+    assert!(!gmsh_running_with(scale), "gmsh outlived stiction");
+    (result.status.code(), String::from_utf8_lossy(&result.stderr).to_string())
+}
+
+/// SIGTERM (a batch system's stop) while gmsh meshes: gmsh is stopped with the run, nothing is
+/// cached, no output folder is made, and the exit status is 130.
+#[test]
+fn sigterm_while_meshing_stops_gmsh_too() {
+    let out = scratch("sigterm-meshing");
+    let out_arg = out.display().to_string();
+    let args = ["run", "cases/ru-sphere/smooth-lj-w1.toml", "--quiet", "--out", out_arg.as_str()];
+    let (code, stderr) = sigterm_while_gmsh_runs(&args, "0.0301");
+    assert_eq!(code, Some(130), "{stderr}");
     assert!(stderr.contains("interrupted after") && stderr.contains("gmsh was stopped"), "{stderr}");
-    assert!(!gmsh_running_with(scale), "gmsh outlived the run");
     assert!(!out.exists(), "an interrupted meshing made the output folder");
+}
+
+/// `stiction check` meshes too: a SIGTERM then stops gmsh with it, exit 130.
+#[test]
+fn sigterm_while_a_check_meshes_stops_gmsh_too() {
+    let (code, stderr) = sigterm_while_gmsh_runs(&["check", "cases/ru-sphere/smooth-lj-w1.toml"], "0.0302");
+    assert_eq!(code, Some(130), "{stderr}");
+    assert!(stderr.contains("stopping the check") && stderr.contains("gmsh was stopped"), "{stderr}");
 }
 
 #[test]

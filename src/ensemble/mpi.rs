@@ -9,7 +9,7 @@
 //! shared output folder, and rank 0 aggregates them from there once every rank is done.
 
 use super::member::{MemberOutcome, run_member};
-use super::{EnsembleOptions, Prepared, announce, describe, finish, local, prepare};
+use super::{EnsembleOptions, Prepared, announce, describe, estimate, finish, local, prepare};
 use crate::ensemble::aggregate::EnsembleAggregate;
 use crate::error::{Result, StictionError};
 use mpi::Threading;
@@ -113,10 +113,19 @@ fn dispatch(prepared: &Prepared, size: i32, threads: usize, rank0_computes: bool
     let outcomes = Mutex::new(Vec::new());
     let interrupted = || prepared.context.interrupt.as_ref().is_some_and(|f| f.load(Ordering::SeqCst));
     let next = || if interrupted() { None } else { queue.lock().expect("queue").pop_front() };
+    // the ranks running members at once (rank 0 among them when it computes)
+    let concurrent = (size as usize - 1 + usize::from(rank0_computes)).max(1);
     let record = |o: MemberOutcome| {
         let mut outcomes = outcomes.lock().expect("outcomes");
+        let (done, total) = (outcomes.len() + 1, prepared.todo.len());
         if !quiet || !o.completed() {
-            eprintln!("{}", describe(&prepared.root, &o, outcomes.len() + 1, prepared.todo.len()));
+            eprintln!("{}", describe(&prepared.root, &o, done, total));
+        }
+        // printed even when quiet, as the local runner does, after the first member to complete
+        if o.completed() && done < total && !outcomes.iter().any(MemberOutcome::completed) {
+            if let Some(line) = estimate(&prepared.root, &o, total - done, concurrent) {
+                eprintln!("{line}");
+            }
         }
         outcomes.push(o);
     };
