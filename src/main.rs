@@ -639,102 +639,120 @@ fn run_ensemble(
     Ok(())
 }
 
-fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let result = match cli.command {
-        Command::Run { input: CaseInput { case, out, sets }, quiet, overwrite, resume, stop_after } => (|| {
-            let options = RunOptions {
-                out,
-                progress: !quiet && std::io::stderr().is_terminal(),
-                progress_label: None,
-                overwrite,
-                interrupt: Some(interrupt_on_ctrl_c(INCREMENT)),
-                resume,
-                stop_after_increments: stop_after,
-                stop_after_flow_steps: None,
-            };
-            for summary in stiction::sweep::run_sweep(&case, &sets, &options)? {
-                // a closed stdout (e.g. `| head -1`) is not an error of the run
-                let mut out = std::io::stdout().lock();
-                for line in stiction::report::summary_lines(&summary) {
-                    if writeln!(out, "{line}").is_err() {
-                        break;
-                    }
-                }
+type Outcome = Result<(), stiction::StictionError>;
+
+/// `stiction run`: the case (or its sweep), a summary per run on standard output.
+fn run_command(input: CaseInput, quiet: bool, overwrite: bool, resume: bool, stop_after: Option<usize>) -> Outcome {
+    let CaseInput { case, out, sets } = input;
+    let options = RunOptions {
+        out,
+        progress: !quiet && std::io::stderr().is_terminal(),
+        progress_label: None,
+        overwrite,
+        interrupt: Some(interrupt_on_ctrl_c(INCREMENT)),
+        resume,
+        stop_after_increments: stop_after,
+        stop_after_flow_steps: None,
+    };
+    for summary in stiction::sweep::run_sweep(&case, &sets, &options)? {
+        // a closed stdout (e.g. `| head -1`) is not an error of the run
+        let mut out = std::io::stdout().lock();
+        for line in stiction::report::summary_lines(&summary) {
+            if writeln!(out, "{line}").is_err() {
+                break;
             }
-            Ok(())
-        })(),
+        }
+    }
+    Ok(())
+}
+
+/// `stiction fit`: over MPI ranks when an MPI launcher started this program (a build with the
+/// `mpi` feature), else on this machine; rank 0 (or the only process) prints the report.
+fn fit_command(fit: &std::path::Path, options: stiction::fit::FitOptions) -> Outcome {
+    #[cfg(feature = "mpi")]
+    let report = if stiction::ensemble::mpi::launched_under_mpi() {
+        stiction::fit::mpi::run_fit_mpi(fit, &options)?
+    } else {
+        Some(stiction::fit::run_fit(fit, &options)?)
+    };
+    #[cfg(not(feature = "mpi"))]
+    let report = Some(stiction::fit::run_fit(fit, &options)?);
+    for line in report.iter().flat_map(stiction::fit::lines) {
+        println!("{line}");
+    }
+    Ok(())
+}
+
+/// `stiction check`: loads and builds the case (meshing it if needed) and prints its size.
+fn check_command(case_file: &std::path::Path, sets: &[String]) -> Outcome {
+    // a check meshes too: interrupted, it stops gmsh rather than leaving it running
+    interrupt_on_ctrl_c("stopping the check");
+    let loaded = case::load(case_file, sets)?;
+    let built = stiction::build::build(&loaded)?;
+    let m = &built.model;
+    println!(
+        "{}: ok ({} nodes, {} cells in {} element sets, {} free dofs, {} matrix entries, mesh {})",
+        loaded.name,
+        m.mesh.nodes.len(),
+        m.sets.iter().map(|s| s.n_cells()).sum::<usize>(),
+        m.sets.len(),
+        m.n_free(),
+        m.pattern().nnz(),
+        built.mesh_path.display()
+    );
+    for w in m.contributions.iter().flat_map(|c| c.warnings()) {
+        eprintln!("warning: {w}");
+    }
+    Ok(())
+}
+
+/// `stiction surrogate-table`: the surrogate asperity table for one work of adhesion.
+fn surrogate_table(work_of_adhesion: f64, output: &std::path::Path, samples: usize) -> ExitCode {
+    if !(work_of_adhesion > 0.0) || samples < 10 {
+        eprintln!("error: --work-of-adhesion must be positive and --samples at least 10");
+        return ExitCode::from(2);
+    }
+    let text = stiction_law_ru_asperity::surrogate::table(work_of_adhesion, samples);
+    if let Err(e) = std::fs::write(output, text) {
+        eprintln!("error: cannot write '{}': {e}", output.display());
+        return ExitCode::from(1);
+    }
+    println!("wrote the SURROGATE (not MD) asperity table for w = {work_of_adhesion} J/m^2 to {}", output.display());
+    ExitCode::SUCCESS
+}
+
+/// `stiction plugins`: the laws built in and found on the search path.
+fn plugins_command(dirs: &[PathBuf]) -> ExitCode {
+    if let Some(file) = dirs.iter().find(|d| d.exists() && !d.is_dir()) {
+        eprintln!("error: --plugin-path '{}' is a file; give folders that hold plugin libraries", file.display());
+        return ExitCode::from(2);
+    }
+    list_plugins(dirs);
+    ExitCode::SUCCESS
+}
+
+fn main() -> ExitCode {
+    let result = match Cli::parse().command {
+        Command::Run { input, quiet, overwrite, resume, stop_after } => {
+            run_command(input, quiet, overwrite, resume, stop_after)
+        }
         Command::Ensemble { input: CaseInput { case, out, sets }, threads_per_member, concurrent_members, quiet } => {
-            let options = stiction::ensemble::EnsembleOptions {
-                out,
-                threads_per_member,
-                concurrent_members,
-                interrupt: Some(interrupt_on_ctrl_c(INCREMENT)),
-                quiet,
-            };
+            let interrupt = Some(interrupt_on_ctrl_c(INCREMENT));
+            let options =
+                stiction::ensemble::EnsembleOptions { out, threads_per_member, concurrent_members, interrupt, quiet };
             run_ensemble(&case, &sets, &options)
         }
-        Command::Fit { fit, out, resume, overwrite, quiet } => (|| {
-            let options = stiction::fit::FitOptions {
-                out,
-                resume,
-                overwrite,
-                interrupt: Some(interrupt_on_ctrl_c(INCREMENT)),
-                quiet,
-            };
-            #[cfg(feature = "mpi")]
-            let report = if stiction::ensemble::mpi::launched_under_mpi() {
-                stiction::fit::mpi::run_fit_mpi(&fit, &options)?
-            } else {
-                Some(stiction::fit::run_fit(&fit, &options)?)
-            };
-            #[cfg(not(feature = "mpi"))]
-            let report = Some(stiction::fit::run_fit(&fit, &options)?);
-            for line in report.iter().flat_map(stiction::fit::lines) {
-                println!("{line}");
-            }
-            Ok(())
-        })(),
-        Command::Check { case, sets } => (|| {
-            // a check meshes too: interrupted, it stops gmsh rather than leaving it running
-            interrupt_on_ctrl_c("stopping the check");
-            let loaded = case::load(&case, &sets)?;
-            let built = stiction::build::build(&loaded)?;
-            let m = &built.model;
-            println!(
-                "{}: ok ({} nodes, {} cells in {} element sets, {} free dofs, {} matrix entries, mesh {})",
-                loaded.name,
-                m.mesh.nodes.len(),
-                m.sets.iter().map(|s| s.n_cells()).sum::<usize>(),
-                m.sets.len(),
-                m.n_free(),
-                m.pattern().nnz(),
-                built.mesh_path.display()
-            );
-            for w in m.contributions.iter().flat_map(|c| c.warnings()) {
-                eprintln!("warning: {w}");
-            }
-            Ok(())
-        })(),
+        Command::Fit { fit, out, resume, overwrite, quiet } => {
+            let interrupt = Some(interrupt_on_ctrl_c(INCREMENT));
+            fit_command(&fit, stiction::fit::FitOptions { out, resume, overwrite, interrupt, quiet })
+        }
+        Command::Check { case, sets } => check_command(&case, &sets),
         Command::Calibrate { table, output, loading_order, unloading_order, work_of_adhesion } => {
             return calibrate(&table, &output, loading_order, unloading_order, work_of_adhesion);
         }
         Command::Plot { runs, output, title } => return plot_runs(&runs, &output, &title),
         Command::SurrogateTable { work_of_adhesion, output, samples } => {
-            if !(work_of_adhesion > 0.0) || samples < 10 {
-                eprintln!("error: --work-of-adhesion must be positive and --samples at least 10");
-                return ExitCode::from(2);
-            }
-            let text = stiction_law_ru_asperity::surrogate::table(work_of_adhesion, samples);
-            if let Err(e) = std::fs::write(&output, text) {
-                eprintln!("error: cannot write '{}': {e}", output.display());
-                return ExitCode::from(1);
-            }
-            println!(
-                "wrote the SURROGATE (not MD) asperity table for w = {work_of_adhesion} J/m^2 to {}",
-                output.display()
-            );
-            Ok(())
+            return surrogate_table(work_of_adhesion, &output, samples);
         }
         Command::Reference { what: ReferenceCommand::CaseKeys } => {
             print!("{}", case::reference::case_keys_markdown());
@@ -744,17 +762,7 @@ fn main() -> ExitCode {
             print!("{}", stiction::fit::spec::fit_keys_markdown());
             Ok(())
         }
-        Command::Plugins { dirs } => {
-            if let Some(file) = dirs.iter().find(|d| d.exists() && !d.is_dir()) {
-                eprintln!(
-                    "error: --plugin-path '{}' is a file; give folders that hold plugin libraries",
-                    file.display()
-                );
-                return ExitCode::from(2);
-            }
-            list_plugins(&dirs);
-            Ok(())
-        }
+        Command::Plugins { dirs } => return plugins_command(&dirs),
         Command::Plugin { command: PluginCommand::Check { law, params, config_file, gap_scale, dirs } } => {
             return plugin_check(&law, &params, config_file, gap_scale, &dirs);
         }
@@ -763,7 +771,6 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            let e: stiction::StictionError = e;
             eprintln!("error: {e}");
             ExitCode::from(e.exit_code() as u8)
         }

@@ -3,6 +3,9 @@
 //! files into a scratch output directory.
 
 pub mod half_space_lj;
+pub mod validation_record;
+
+pub use validation_record::{Tolerance, validate};
 
 use std::collections::BTreeSet;
 use std::path::PathBuf;

@@ -7,7 +7,7 @@
 //! unstable under load control. A conservative system traced along its equilibrium path does
 //! no net work over a closed cycle; a load-controlled run jumps and loses energy at each jump.
 
-use stiction_tests::run_case;
+use stiction_tests::{Tolerance, run_case, validate};
 
 const Z0: f64 = 0.169;
 const STIFFNESS: f64 = 10.0; // E / L
@@ -76,7 +76,15 @@ fn arc_length_follows_the_closed_form_path_through_both_folds_without_dissipatio
     );
     println!("most adhesive force {min_force:.5} vs peak traction x area {:.5}", -peak);
     // every converged state is an equilibrium of the closed form
-    assert!(arc_error < 1e-6 && load_error < 1e-6, "{arc_error} {load_error}");
+    validate(
+        "arc length, block on a Lennard-Jones flat: largest distance of a state from the path / peak",
+        "-",
+        arc_error,
+        0.0,
+        "the closed-form equilibrium path",
+        Tolerance::Absolute(1e-6),
+    );
+    assert!(load_error < 1e-6, "{load_error}");
     // arc length passes the two folds of the approach and the two of the retraction
     assert!(arc.limit_points >= 4, "{} limit points", arc.limit_points);
     assert!(arc_unstable >= 20 && load_unstable == 0, "{arc_unstable} / {load_unstable}");
@@ -85,7 +93,14 @@ fn arc_length_follows_the_closed_form_path_through_both_folds_without_dissipatio
     assert!(load_work > 0.5, "load-control losses {load_work}");
     assert!(arc_work.abs() < 0.01 * load_work, "arc-length cycle work {arc_work} vs {load_work}");
     // the stable branch reaches the peak adhesive traction
-    assert!((min_force / -peak - 1.0).abs() < 1e-3, "{min_force} vs {}", -peak);
+    validate(
+        "arc length, block on a Lennard-Jones flat: most adhesive force",
+        "-",
+        min_force,
+        -peak,
+        "peak traction x area (closed form)",
+        Tolerance::Relative(1e-3),
+    );
 }
 
 /// The viscous regularisation, the other way across jumps, reports its dissipation and warns

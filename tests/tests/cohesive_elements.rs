@@ -3,7 +3,7 @@
 //! (cases/validation/two-blocks-cohesive.toml): g = E U / (2 L k + E), sigma = k g. The stress
 //! state is uniform, so the discrete solution is exact up to round-off.
 
-use stiction_tests::run_case;
+use stiction_tests::{Tolerance, run_case, validate};
 
 #[test]
 fn blocks_in_series_with_an_elastic_interface_match_the_closed_form() {
@@ -17,7 +17,14 @@ fn blocks_in_series_with_an_elastic_interface_match_the_closed_form() {
     let top = m.mesh.group_nodes(m.mesh.group("top").unwrap());
     let r = m.reaction(&top);
     println!("reaction {:.12}, closed form {sigma:.12}", r[2]);
-    assert!((r[2] - sigma).abs() < 1e-9, "{} vs {sigma}", r[2]);
+    validate(
+        "cohesive elements: two blocks in series, reaction",
+        "-",
+        r[2],
+        sigma,
+        "closed form sigma = E k U / (2 L k + E)",
+        Tolerance::Absolute(1e-9),
+    );
     let stresses: Vec<f64> = stiction_tests::integration_points(m).iter().map(|p| p.4[2]).collect();
     assert!(stresses.iter().all(|s| (s - sigma).abs() < 1e-9), "uniform stress expected");
     let text = std::fs::read_to_string(summary.output_directory.join("history.csv")).unwrap();
@@ -73,7 +80,14 @@ fn cohesive_element_tangent_matches_finite_differences_while_softening() {
         |_| vec![0.0005, -0.0003, 0.006],
     );
     println!("cohesive elements (softening): tangent vs finite differences {err:.2e}");
-    assert!(err < 1e-5, "{err}");
+    validate(
+        "cohesive elements (3D, mixed-mode softening): assembled tangent, max error / max entry",
+        "-",
+        err,
+        0.0,
+        "central differences of the residual",
+        Tolerance::Absolute(1e-5),
+    );
 }
 
 /// Work of the top face over a run: sum over increments of the trapezoid of the reaction times
@@ -114,7 +128,14 @@ fn mixed_mode_separation_dissipates_the_benzeggagh_kenane_energy() {
             "theta {theta_deg}: work {w:.6}, Benzeggagh-Kenane {expected:.6} ({:+.3}%)",
             100.0 * (w / expected - 1.0)
         );
-        assert!((w / expected - 1.0).abs() < 5e-3, "theta {theta_deg}: work {w} vs {expected}");
+        validate(
+            &format!("mixed-mode cohesive separation at {theta_deg} degrees: work of separation"),
+            "-",
+            w,
+            expected,
+            "Benzeggagh-Kenane",
+            Tolerance::Relative(5e-3),
+        );
     }
 }
 
@@ -134,7 +155,14 @@ fn axisymmetric_cylinders_with_an_elastic_interface_match_the_closed_form() {
     let r = m.reaction(&top);
     let expected = sigma * std::f64::consts::PI;
     println!("axisymmetric: top reaction {:.12}, closed form {expected:.12}", r[1]);
-    assert!((r[1] - expected).abs() < 1e-9, "{} vs {expected}", r[1]);
+    validate(
+        "cohesive elements: two cylinders in series (axisymmetric), reaction",
+        "-",
+        r[1],
+        expected,
+        "closed form",
+        Tolerance::Absolute(1e-9),
+    );
     let (_, fields) = m.contributions[0].point_output().unwrap();
     let gap = fields.iter().find(|f| f.name == "gap").unwrap();
     let slip = fields.iter().find(|f| f.name == "slip").unwrap();
@@ -152,7 +180,14 @@ fn axisymmetric_cohesive_tangent_matches_finite_differences_while_softening() {
         |x| vec![0.002 * x[0], 0.006],
     );
     println!("axisymmetric cohesive elements (softening): tangent vs finite differences {err:.2e}");
-    assert!(err < 1e-5, "{err}");
+    validate(
+        "cohesive elements (axisymmetric, softening): assembled tangent, max error / max entry",
+        "-",
+        err,
+        0.0,
+        "central differences of the residual",
+        Tolerance::Absolute(1e-5),
+    );
 }
 
 /// A second cohesive interface on a surface another one already split (here frictionless

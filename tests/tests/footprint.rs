@@ -6,7 +6,7 @@
 //! A point force has no finite compliance (u ~ 1/r under it): with footprint 0 the compliance
 //! grows as the mesh is refined, with a footprint it converges to the closed form.
 
-use stiction_tests::{build_case, one_asperity_at_the_pole, run_case};
+use stiction_tests::{Tolerance, build_case, one_asperity_at_the_pole, run_case, validate};
 
 const E: f64 = 410.0;
 const NU: f64 = 0.3;
@@ -57,7 +57,14 @@ fn a_resolved_footprint_has_the_half_space_compliance_and_a_point_force_does_not
     // the footprint: within 6% of the half-space value and nearly mesh-independent (measured
     // -3.7% at h 20 and -2.4% at h 10: the discretisation is stiffer and converges from below;
     // the finite, clamped hemisphere would add compliance of order a / R)
-    assert!((fine / exact - 1.0).abs() < 0.06, "{fine} vs {exact}");
+    validate(
+        &format!("footprint of radius {a} nm: compliance on the 10 nm mesh"),
+        "nm/nN",
+        fine,
+        exact,
+        "uniform pressure on a half-space disc",
+        Tolerance::Relative(0.06),
+    );
     assert!((coarse / fine - 1.0).abs() < 0.03, "{coarse} vs {fine}");
     // the point force: stiffer-looking on the coarse mesh, and growing with refinement
     assert!(point_fine > 1.2 * point_coarse, "{point_fine} vs {point_coarse}");

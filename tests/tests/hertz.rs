@@ -8,7 +8,7 @@
 //! at infinity in a half-space, while the model clamps the base at z = R. Tolerance 4%.
 
 use stiction_core::voigt::von_mises;
-use stiction_tests::run_case;
+use stiction_tests::{Tolerance, run_case, validate};
 
 #[test]
 fn hertz_axisymmetric_force_radius_and_subsurface_stress() {
@@ -22,6 +22,7 @@ fn hertz_axisymmetric_force_radius_and_subsurface_stress() {
     let e_star = e / (1.0 - nu * nu);
     let h_contact = 4.0;
     let mut rows = 0;
+    let mut worst = (0.0f64, 1.0f64, 1.0f64); // (approach, force, Hertz): none yet, no deviation
     for line in text.lines().skip(2) {
         let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
         let d = v[ia];
@@ -34,11 +35,21 @@ fn hertz_axisymmetric_force_radius_and_subsurface_stress() {
             v[i_f],
             100.0 * rel
         );
-        assert!(rel.abs() < 0.04, "force at d = {d}: {rel}");
+        if rel.abs() >= (worst.1 / worst.2 - 1.0).abs() {
+            worst = (d, v[i_f], hertz);
+        }
         assert!((a_fe - a).abs() < 1.5 * h_contact, "contact radius at d = {d}: {a_fe} vs {a}");
         rows += 1;
     }
     assert_eq!(rows, 10);
+    validate(
+        &format!("Hertz: force of the Ru hemisphere, worst of 10 approaches to 2 nm (at {:.1} nm)", worst.0),
+        "nN",
+        worst.1,
+        worst.2,
+        "Hertz",
+        Tolerance::Relative(0.04),
+    );
     // Subsurface maximum of von Mises stress at the final approach.
     let d = 2.0;
     let a = (r * d).sqrt();
@@ -53,7 +64,14 @@ fn hertz_axisymmetric_force_radius_and_subsurface_stress() {
         }
     }
     println!("max von Mises {vm_max:.3} GPa = {:.3} p0 at depth {depth:.2} nm = {:.3} a", vm_max / p0, depth / a);
-    assert!((vm_max / p0 - 0.620).abs() < 0.04 * 0.620, "{}", vm_max / p0);
+    validate(
+        "Hertz: max von Mises stress / p0 at 2 nm",
+        "-",
+        vm_max / p0,
+        0.620,
+        "Hertz (nu = 0.3)",
+        Tolerance::Relative(0.04),
+    );
     assert!((depth - 0.481 * a).abs() < h_contact, "depth {depth} vs {}", 0.481 * a);
 }
 
@@ -100,7 +118,14 @@ fn hertz_3d_quarter_matches_hertz_and_the_axisymmetric_model() {
             (r * d).sqrt()
         );
         assert!((force / hertz - 1.0).abs() < 0.04);
-        assert!((force / fa - 1.0).abs() < 0.01);
+        validate(
+            &format!("Hertz: 3D quarter (tet10) force at {d:.1} nm"),
+            "nN",
+            force,
+            *fa,
+            "the axisymmetric model",
+            Tolerance::Relative(0.01),
+        );
         assert!((a_fe - (r * d).sqrt()).abs() < 1.5 * 6.0);
     }
 }
@@ -141,7 +166,14 @@ fn smooth_hertz_contact_resistance_follows_holm() {
             v[ir],
             100.0 * (v[ir] / holm - 1.0)
         );
-        assert!((v[ir] / holm - 1.0).abs() < 0.035, "d = {d}: {} vs {holm}", v[ir]);
+        validate(
+            &format!("Holm: contact resistance of the smooth Hertz contact at {d:.1} nm"),
+            "ohm",
+            v[ir],
+            holm,
+            "Holm, rho / 2a",
+            Tolerance::Relative(0.035),
+        );
         rows += 1;
     }
     assert_eq!(rows, 10);
@@ -162,5 +194,12 @@ fn rigid_flat_tangent_matches_finite_differences() {
     m.apply_time(0.6);
     let err = stiction_tests::assembled_tangent_error(m, 1e-7);
     println!("rigid flat with Lennard-Jones: tangent vs finite differences {err:.2e}");
-    assert!(err < 1e-5, "{err}");
+    validate(
+        "rigid flat with Lennard-Jones: assembled tangent, max error / max entry",
+        "-",
+        err,
+        0.0,
+        "central differences of the residual",
+        Tolerance::Absolute(1e-5),
+    );
 }

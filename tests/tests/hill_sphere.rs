@@ -2,7 +2,7 @@
 //! hill-sphere-axisym.toml): the elastic-plastic boundary radius c and the outer radial
 //! displacement u_b = Y (1 - nu) c^3 / (E b^2), for p = Y [2 ln(c/a) + (2/3)(1 - c^3/b^3)].
 
-use stiction_tests::run_case;
+use stiction_tests::{Tolerance, run_case, validate};
 
 #[test]
 fn elastic_plastic_boundary_and_outer_displacement_match_hill() {
@@ -25,7 +25,14 @@ fn elastic_plastic_boundary_and_outer_displacement_match_hill() {
         / outer.len() as f64;
     let exact = y * (1.0 - nu) * c.powi(3) / (e * b * b);
     println!("u_b = {ub:.6e}, Hill {exact:.6e} ({:+.2}%)", 100.0 * (ub / exact - 1.0));
-    assert!((ub / exact - 1.0).abs() < 0.01);
+    validate(
+        "Hill elastic-plastic thick sphere: outer radial displacement",
+        "-",
+        ub,
+        exact,
+        "Hill's closed form",
+        Tolerance::Relative(0.01),
+    );
     // plastic front: largest radius of an integration point with plastic strain
     let nq = m.sets[0].kernel.n_points();
     let (mut front, mut inner_elastic) = (0.0f64, f64::INFINITY);

@@ -18,7 +18,7 @@
 use std::f64::consts::PI;
 use stiction::run::RunSummary;
 use stiction_tests::half_space_lj::{CurveSummary, HalfSpaceLj, RingGrid, SphereLj};
-use stiction_tests::run_case;
+use stiction_tests::{Tolerance, run_case, validate};
 
 /// The case's sphere: R = 1000 nm, E = 410 GPa, nu = 0.3, z0 = 0.169 nm.
 fn sphere(w: f64) -> SphereLj {
@@ -65,10 +65,13 @@ fn compare_with_greenwood(w: f64, sets: &[&str], label: &str) -> RunSummary {
         folds.last(),
         summary.snaps
     );
-    assert!(
-        (fe / reference.pull_off_force - 1.0).abs() < 0.03,
-        "pull-off {fe} vs Greenwood {}",
-        reference.pull_off_force
+    validate(
+        &format!("Lennard-Jones sphere, w = {w} J/m^2: pull-off force"),
+        "nN",
+        fe,
+        reference.pull_off_force,
+        "Greenwood's half-space model with the same law (tests/src/half_space_lj.rs)",
+        Tolerance::Relative(0.03),
     );
     assert!(folds.len() >= 2, "unloading crossed {} folds", folds.len());
     let stretch_per_force = (1.0 + 0.3) * (3.0 - 2.0 * 0.3) / (2.0 * PI * 410.0 * 1000.0);
@@ -168,7 +171,14 @@ fn lennard_jones_pull_off_matches_greenwood_at_w_1_and_lies_in_the_jkr_dmt_trans
         100.0 * i.viscous_share_of_work
     );
     assert!(fe > 1.5 && fe < 2.0, "outside JKR-DMT: {fe}");
-    assert!((fe / md - 1.0).abs() < 0.08, "vs Maugis-Dugdale {md}: {fe}");
+    validate(
+        "Lennard-Jones sphere, w = 1 J/m^2: pull-off / (pi w R)",
+        "-",
+        fe,
+        md,
+        "Maugis-Dugdale at lambda = 1.157 mu",
+        Tolerance::Relative(0.08),
+    );
     // arc length passed the limit points of jump-in and pull-off, with no viscous dissipation
     let events = std::fs::read_to_string(summary.output_directory.join("events.csv")).unwrap();
     let limit_points = events.lines().filter(|l| l.contains(",limit_point,")).count();
@@ -188,7 +198,14 @@ fn lennard_jones_pull_off_matches_greenwood_at_w_1_and_lies_in_the_jkr_dmt_trans
         "arc length: pull-off {:.2} nN, {} limit points, {} arc-length increments; viscous (zeta 1e-4): pull-off {:.2} nN, viscous dissipation {:.1} aJ",
         -pull_off, summary.limit_points, summary.arc_length_increments, -viscous_pull_off, v.viscous_dissipation
     );
-    assert!((viscous_pull_off / pull_off - 1.0).abs() < 1e-3, "{viscous_pull_off} vs {pull_off}");
+    validate(
+        "Lennard-Jones sphere, w = 1 J/m^2: pull-off with viscous regularisation",
+        "nN",
+        viscous_pull_off,
+        pull_off,
+        "the same run by arc length",
+        Tolerance::Relative(1e-3),
+    );
     assert!(v.viscous_dissipation > 0.0);
 }
 

@@ -8,7 +8,7 @@
 
 use stiction_law_ru_asperity::calibration::Calibration;
 use stiction_law_ru_asperity::law::{AsperityModel, N_STATE};
-use stiction_tests::{history_columns, run_case, workspace_root};
+use stiction_tests::{Tolerance, history_columns, run_case, validate, workspace_root};
 
 fn history(dir: &std::path::Path) -> (Vec<String>, Vec<Vec<f64>>) {
     let text = std::fs::read_to_string(dir.join("history.csv")).unwrap();
@@ -73,7 +73,14 @@ fn rigid_continuum_force_equals_the_sum_of_asperity_laws_and_equilibrium_holds()
         if expected.abs() > 100.0 {
             let rel = f / expected - 1.0;
             println!("approach {a:.2} nm: FE {f:.1} nN, sum of asperity laws {expected:.1} nN ({:+.3}%)", 100.0 * rel);
-            assert!(rel.abs() < 0.01, "approach {a}: {f} vs {expected}");
+            validate(
+                &format!("rough sphere, asperities on a rigid body: force at approach {a:.2} nm"),
+                "nN",
+                f,
+                expected,
+                "the sum of the asperity laws at their gaps",
+                Tolerance::Relative(0.01),
+            );
             checked += 1;
         }
     }
