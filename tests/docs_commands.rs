@@ -264,3 +264,38 @@ fn the_output_reference_names_every_summary_field_and_no_other() {
         assert!(units_row.contains(&format!("`{unit}`")), "the units row does not name `{unit}`");
     }
 }
+
+/// The validation report (docs/validation-report.md, written by scripts/validation-report.sh)
+/// matches the tests: every test it lists exists in its module, and every validation module
+/// that compares through `stiction_tests::validate` has tests in it. (Its numbers are the
+/// tests' own, re-measured by running the script; this checks that no test was renamed,
+/// removed or added without the report following.)
+#[test]
+fn the_validation_report_lists_the_tests_that_validate_and_only_those() {
+    let report = std::fs::read_to_string(root().join("docs/validation-report.md")).unwrap();
+    let listed: Vec<(String, String)> = report
+        .lines()
+        .filter_map(|l| l.strip_prefix("## `")?.strip_suffix('`'))
+        .filter_map(|t| t.split_once("::").map(|(m, f)| (m.to_string(), f.to_string())))
+        .collect();
+    assert!(!listed.is_empty(), "the report lists no tests");
+    let dir = root().join("tests/tests");
+    for (module, test) in &listed {
+        let source = std::fs::read_to_string(dir.join(format!("{module}.rs")))
+            .unwrap_or_else(|_| panic!("the report lists {module}::{test}, but tests/tests/{module}.rs is gone"));
+        assert!(
+            source.contains(&format!("fn {test}(")),
+            "the report lists {module}::{test}, which tests/tests/{module}.rs no longer has: run scripts/validation-report.sh"
+        );
+    }
+    for entry in std::fs::read_dir(&dir).unwrap().flatten() {
+        let module = entry.path().file_stem().unwrap().to_string_lossy().to_string();
+        let source = std::fs::read_to_string(entry.path()).unwrap();
+        if source.contains("validate(") {
+            assert!(
+                listed.iter().any(|(m, _)| *m == module),
+                "tests/tests/{module}.rs validates, but the report has none of its tests: run scripts/validation-report.sh"
+            );
+        }
+    }
+}

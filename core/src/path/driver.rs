@@ -1,6 +1,7 @@
 //! The step driver: runs the steps of an analysis with a [`LoadControl`] that hands over to a
-//! [`Crossing`] at limit points (when continuation is on: an [`ArcLengthControl`] or a
-//! [`DissipationControl`]), commits each converged increment and notifies the observers. It
+//! [`Crossing`] at limit points (when continuation is on: an
+//! [`super::arc_length_control::ArcLengthControl`] or a
+//! [`super::dissipation_control::DissipationControl`]), commits each converged increment and notifies the observers. It
 //! does no output of its own.
 //!
 //! What the driver does after each attempt (cut, hand over to a crossing, snap, stop) is the
@@ -24,35 +25,30 @@
 //! the run fails or is stopped; [`resume_steps`] goes on from one in another process
 //! ([`checkpointing`]).
 
-use super::arc_length_control::ArcLengthControl;
-use super::dissipation_control::DissipationControl;
-use super::load_control::{LoadControl, StartPredictor};
+use super::load_control::LoadControl;
 use super::policy::{CRAWL_FRACTION, Decision, FailureFacts, JumpFacts, PathPolicy, jumped};
-use super::step::StepPlan;
-use super::tangent_choice::{TangentChoice, TangentSwitch};
+use super::tangent_choice::TangentSwitch;
 use super::{Attempt, AttemptFailure, Crossing, PathControl, Solvers, StepWindow};
-use crate::checkpoint::CheckpointPlan;
 use crate::error::{CoreError, Result};
 use crate::linear_solver::LinearSolver;
 use crate::model::Model;
 use crate::nonlinear::arc_length::PreviousIncrement;
-use crate::nonlinear::damped_flow::FlowSettings;
 use crate::nonlinear::{IncrementFailure, IncrementReport, NonlinearSolver, ReferenceScales};
 use crate::problem::NonlinearProblem;
-use crate::record::interface_tracker::{CommitContext, InterfaceInfo};
+use crate::record::interface_tracker::CommitContext;
 use crate::record::summary::{RunStatus, SnapSolve, Units};
 use crate::record::{CommittedIncrement, InterfaceTracker, Observer, RunSummary};
 use crate::vector::{dot, norm};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 pub mod checkpointing;
+mod plan;
 pub mod snapping;
 pub use checkpointing::Checkpoint;
 use checkpointing::EarlierParts;
+pub use plan::{Continuation, ContinuationMethod, RunPlan, SnapMethod};
 use snapping::SnapInProgress;
 
 /// How a converged increment was solved.
@@ -62,87 +58,6 @@ enum Via {
     Crossing,
     /// Pseudo-transient continuation: a snap to a stable state.
     Settling,
-}
-
-/// Everything the driver needs besides the model, the solvers and the observers.
-#[derive(Debug, Clone)]
-pub struct RunPlan {
-    pub name: String,
-    /// The case's length and force units (for reports; empty when not stated).
-    pub units: (String, String),
-    pub output_directory: PathBuf,
-    pub steps: Vec<StepPlan>,
-    /// How limit points are crossed (None: they are not; load control cuts, then snaps).
-    pub continuation: Option<Continuation>,
-    /// Per contribution of the model: kind and viscous-share limit.
-    pub interfaces: Vec<InterfaceInfo>,
-    /// Set (e.g. by a Ctrl-C handler) to stop the run after the increment in progress (inside
-    /// a damped-flow snap: after its step in progress): the run ends with status "interrupted".
-    pub interrupt: Option<Arc<AtomicBool>>,
-    /// The predictor of the increments with no earlier rate to extrapolate.
-    pub start_predictor: StartPredictor,
-    /// How a snap finds the state it reaches.
-    pub snap: SnapMethod,
-    /// Which material tangent the solvers see.
-    pub tangent: TangentChoice,
-    /// Where and how often the run writes checkpoints (None: never).
-    pub checkpoint: Option<CheckpointPlan>,
-    /// Stop the run (as if interrupted, with a checkpoint) once this many increments are
-    /// committed in all, at the first point between increments after that (no crossing under
-    /// way): a run split in parts, e.g. to test that resuming it changes nothing.
-    pub stop_after_increments: Option<usize>,
-    /// Stop the run (as if interrupted, with a checkpoint) inside a damped-flow snap, after
-    /// this many flow steps of this process in all: a run split in the middle of a snap.
-    pub stop_after_flow_steps: Option<usize>,
-}
-
-/// How a snap (a jump at a fixed load to the stable state the system reaches) is solved.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SnapMethod {
-    /// Along the overdamped motion M du/dtau = -r(u) ([`crate::nonlinear::damped_flow::damped_flow`]): the state depends
-    /// on the path where the body yields or a law is hysteretic, and this path has no free
-    /// parameter and converges with the mesh. Problems without a mass settle instead.
-    DampedFlow(FlowSettings),
-    /// By descent from the committed state ([`crate::nonlinear::settle::settle`]): cheaper, the same state for an
-    /// elastic body with one stable state in reach, a one-step plastic update otherwise.
-    Settle,
-    /// By descent, and along the damped flow with these settings where the descent finds no
-    /// stable state (it may stall where the body's energy is nearly flat: a surface node
-    /// hovering at the edge of an adhesive contact); the flow, which only needs each of its short
-    /// steps solved, then finds one. The default for path-independent bodies.
-    SettleOrFlow(FlowSettings),
-}
-
-/// Path following at limit points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Continuation {
-    pub method: ContinuationMethod,
-    /// Consecutive cuts after which the crossing takes over.
-    pub after_cuts: usize,
-}
-
-/// The constraint a crossing follows the path on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ContinuationMethod {
-    /// [`ArcLengthControl`]: an arc length in (u, t).
-    ArcLength,
-    /// [`DissipationControl`]: the energy damage dissipates per increment.
-    Dissipation,
-}
-
-impl Continuation {
-    /// A crossing from the last converged increment `previous`, handing back past
-    /// `resume_after`; None when that increment did not move.
-    fn start(&self, previous: PreviousIncrement, resume_after: f64) -> Option<Box<dyn Crossing>> {
-        match self.method {
-            ContinuationMethod::ArcLength => {
-                ArcLengthControl::start(previous, resume_after).map(|c| Box::new(c) as Box<dyn Crossing>)
-            }
-            ContinuationMethod::Dissipation => {
-                DissipationControl::start(previous, resume_after).map(|c| Box::new(c) as Box<dyn Crossing>)
-            }
-        }
-    }
 }
 
 /// Why a run ended before its last step did.
