@@ -88,6 +88,7 @@ use crate::linear_solver::{FactorKind, LinearSolver};
 use crate::problem::{IntegratorStep, NonlinearProblem};
 use crate::sparse::SparsityPattern;
 use crate::vector::{distance_inf, norm, norm_inf};
+use std::ops::ControlFlow;
 use std::time::Instant;
 
 /// Failed steps in a row (each cut fourfold) after which the flow gives up.
@@ -555,6 +556,68 @@ pub struct FlowState {
 }
 
 impl FlowState {
+    /// The flow's state at its start: as saved when resumed; fresh from the committed state,
+    /// unless that is already at rest (then the flow ends at once, with the report of that
+    /// check).
+    fn begin(
+        problem: &mut dyn NonlinearProblem,
+        mass: &[f64],
+        linear: &mut dyn LinearSolver,
+        newton: &NewtonSettings,
+        tol: f64,
+        start: FlowStart,
+    ) -> std::result::Result<ControlFlow<FlowReport, FlowState>, IncrementFailure> {
+        let scales = match start {
+            FlowStart::Resumed(state) => return Ok(ControlFlow::Continue(*state)),
+            FlowStart::Fresh(scales) => scales,
+        };
+        let mut report = FlowReport::default();
+        let timer = Instant::now();
+        problem.assemble(true)?;
+        report.costs.assembly_seconds += timer.elapsed().as_secs_f64();
+        let force_scale = newton.force_scale(problem.force_norm(), scales);
+        if newton.residual_negligible(norm(problem.residual()), force_scale) {
+            return Ok(ControlFlow::Break(report));
+        }
+        Ok(ControlFlow::Continue(FlowState::start(problem, mass, linear, scales, tol, report)?))
+    }
+
+    /// Takes the accepted step of length `h` to `u` with velocity `v_new`: commits it once it
+    /// moved past the commit bar, adds what the drag released along it, and sets the next
+    /// step's history and length (`growth` times this one, BDF2 from this step; across a kink
+    /// backward Euler again at the same length). Returns the velocity's decay over the step.
+    fn accept(
+        &mut self,
+        problem: &mut dyn NonlinearProblem,
+        u: Vec<f64>,
+        v_new: Vec<f64>,
+        h: f64,
+        kink: bool,
+        growth: f64,
+    ) -> f64 {
+        if distance_inf(&u, &self.committed) >= self.commit_bar {
+            problem.commit();
+            self.committed.clone_from(&u);
+            self.report.commits += 1;
+        }
+        self.report.steps += 1;
+        self.report.drag_dissipation += released_along_segment(&self.u_n, &self.residual_n, &u, problem.residual());
+        self.residual_n.copy_from_slice(problem.residual());
+        let decay = norm(&v_new) / norm(&self.v);
+        let (u_prev, v_prev) = (std::mem::replace(&mut self.u_n, u), std::mem::replace(&mut self.v, v_new));
+        if kink {
+            // across the kink the velocity is not smooth: BDF2's history would carry the jump
+            // into the next steps; the flow restarts by backward Euler at the same length
+            self.report.kinks += 1;
+            self.previous = None;
+        } else {
+            self.previous = Some(PreviousStep { u: u_prev, v: v_prev, h });
+            self.h *= growth;
+        }
+        // the wrapped problem's residual at the accepted state is the static one, r(u_n)
+        self.committed_residual = norm(problem.residual());
+        decay
+    }
     /// Tries the flow's end directly ([`end_directly`]) from the last accepted state when the
     /// move `to_come` is below the `negligible` move and, after a miss, below the tail bar or
     /// with the move `so_far` past the tail reach (see [`FlowState`]'s fields); true when the
@@ -641,19 +704,9 @@ pub fn follow_damped_flow(
 ) -> std::result::Result<FlowEnd, IncrementFailure> {
     let newton = solver.settings().clone();
     let tol = settings.tolerance;
-    let mut s = match start {
-        FlowStart::Resumed(state) => *state,
-        FlowStart::Fresh(scales) => {
-            let mut report = FlowReport::default();
-            let timer = Instant::now();
-            problem.assemble(true)?;
-            report.costs.assembly_seconds += timer.elapsed().as_secs_f64();
-            let force_scale = newton.force_scale(problem.force_norm(), scales);
-            if newton.residual_negligible(norm(problem.residual()), force_scale) {
-                return Ok(FlowEnd::Settled(report));
-            }
-            FlowState::start(problem, mass, linear, scales, tol, report)?
-        }
+    let mut s = match FlowState::begin(problem, mass, linear, &newton, tol, start)? {
+        ControlFlow::Continue(state) => state,
+        ControlFlow::Break(report) => return Ok(FlowEnd::Settled(report)),
     };
     let (t, scales) = (s.t, s.scales);
     let force_scale = |p: &dyn NonlinearProblem| newton.force_scale(p.force_norm(), scales);
@@ -702,28 +755,9 @@ pub fn follow_damped_flow(
         }
         redone = None;
         cuts_in_a_row = 0;
-        if distance_inf(&u, &s.committed) >= s.commit_bar {
-            problem.commit();
-            s.committed.clone_from(&u);
-            s.report.commits += 1;
-        }
-        s.report.steps += 1;
-        s.report.drag_dissipation += released_along_segment(&s.u_n, &s.residual_n, &u, problem.residual());
-        s.residual_n.copy_from_slice(problem.residual());
-        let decay = norm(&v_new) / norm(&s.v);
-        let (u_prev, v_prev) = (std::mem::replace(&mut s.u_n, u), std::mem::replace(&mut s.v, v_new));
-        if kink {
-            // across the kink the velocity is not smooth: BDF2's history would carry the jump
-            // into the next steps; the flow restarts by backward Euler at the same length
-            s.report.kinks += 1;
-            s.previous = None;
-        } else {
-            s.previous = Some(PreviousStep { u: u_prev, v: v_prev, h });
-            // BDF2 stays zero-stable for step ratios below 1 + sqrt 2
-            s.h *= step_factor(tol, moved, error, formula.order, 2.0);
-        }
-        // the wrapped problem's residual at the accepted state is the static one, r(u_n)
-        s.committed_residual = norm(problem.residual());
+        // BDF2 stays zero-stable for step ratios below 1 + sqrt 2
+        let growth = step_factor(tol, moved, error, formula.order, 2.0);
+        let decay = s.accept(problem, u, v_new, h, kink, growth);
         if at_rest(problem) {
             return Ok(FlowEnd::Settled(s.report));
         }
