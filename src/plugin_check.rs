@@ -16,7 +16,7 @@
 //! plane rotates the shear value with it (an isotropic interface).
 
 use std::sync::Arc;
-use stiction_core::interface_law::InterfaceLaw;
+use stiction_core::interface_law::{InterfaceLaw, MixedLawResponse};
 
 /// One check's outcome.
 pub struct CheckResult {
@@ -196,14 +196,90 @@ fn mixed_path(scale: f64, s: f64) -> [f64; 3] {
     [scale * a * (1.0 + s), scale * (3.0 * s).cos() * 1.5 * s, -scale * 0.7 * s * s]
 }
 
+/// What the mixed-mode tangent check found along its path.
+#[derive(Default)]
+struct TangentStats {
+    worst: f64,
+    checked: usize,
+    skipped: usize,
+    failures: Vec<String>,
+}
+
+/// Compares the tangent `r` at opening `delta` with central differences (step `h`) of the
+/// value, entry by entry, skipping entries near a kink (where differences over h and 10 h, or
+/// the one-sided ones, disagree).
+fn compare_mixed_tangent(
+    law: &Arc<dyn InterfaceLaw>,
+    delta: [f64; 3],
+    committed: &[f64],
+    r: &MixedLawResponse,
+    h: f64,
+    stats: &mut TangentStats,
+) {
+    let norm = r.tangent.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
+    let mut scratch = vec![0.0; committed.len()];
+    let mut value_at = |d: [f64; 3]| law.evaluate_mixed(d, committed, &mut scratch).map(|r| r.value);
+    for j in 0..3 {
+        let shifted = |f: f64| {
+            let mut d = delta;
+            d[j] += f * h;
+            d
+        };
+        let (Ok(vp), Ok(vm), Ok(vp10), Ok(vm10)) =
+            (value_at(shifted(1.0)), value_at(shifted(-1.0)), value_at(shifted(10.0)), value_at(shifted(-10.0)))
+        else {
+            continue;
+        };
+        for k in 0..3 {
+            let fd = (vp[k] - vm[k]) / (2.0 * h);
+            let wide = (vp10[k] - vm10[k]) / (20.0 * h);
+            let (forward, backward) = ((vp[k] - r.value[k]) / h, (r.value[k] - vm[k]) / h);
+            if (fd - wide).abs() > 1e-4 * norm || (forward - backward).abs() > 1e-3 * norm {
+                stats.skipped += 1;
+                continue;
+            }
+            stats.checked += 1;
+            let err = (r.tangent[k][j] - fd).abs() / norm;
+            stats.worst = stats.worst.max(err);
+            if err > 1e-5 {
+                stats.failures.push(format!(
+                    "opening {delta:.3?}: d value_{k} / d gap_{j} = {:.6e}, finite difference {fd:.6e}",
+                    r.tangent[k][j]
+                ));
+            }
+        }
+    }
+}
+
+/// Whether the normal-only evaluation at `delta[0]` is the normal part of the mixed law
+/// (value, tangent and state).
+fn normal_only_is_consistent(law: &Arc<dyn InterfaceLaw>, delta: [f64; 3], committed: &[f64]) -> bool {
+    let (mut a, mut b) = (vec![0.0; committed.len()], vec![0.0; committed.len()]);
+    match (law.evaluate(delta[0], committed, &mut a), law.evaluate_mixed([delta[0], 0.0, 0.0], committed, &mut b)) {
+        (Ok(n), Ok(m)) => n.value == m.value[0] && n.tangent == m.tangent[0][0] && a == b,
+        _ => true,
+    }
+}
+
+/// Whether rotating the slip by 90 degrees in the tangential plane rotates the shear value
+/// of `r` (the response at `delta`).
+fn is_isotropic_at(law: &Arc<dyn InterfaceLaw>, delta: [f64; 3], committed: &[f64], r: &MixedLawResponse) -> bool {
+    let mut b = vec![0.0; committed.len()];
+    let Ok(q) = law.evaluate_mixed([delta[0], -delta[2], delta[1]], committed, &mut b) else {
+        return true;
+    };
+    let expected = [r.value[0], -r.value[2], r.value[1]];
+    let scale = r.value.iter().fold(1e-300f64, |m, v| m.max(v.abs()));
+    !(0..3).any(|k| (q.value[k] - expected[k]).abs() > 1e-9 * scale)
+}
+
 /// Checks 5 and 6 for a mixed-mode law.
 fn check_mixed(law: &Arc<dyn InterfaceLaw>, scale: f64) -> Vec<CheckResult> {
     let ns = law.n_state();
     let mut committed = vec![0.0; ns];
     law.initialize_state(&mut committed);
     let h = 1e-6 * scale;
-    let (mut worst, mut checked, mut skipped) = (0.0f64, 0usize, 0usize);
-    let mut failures = Vec::new();
+    let mut stats = TangentStats::default();
     let (mut consistent, mut isotropic) = (true, true);
     for i in 0..300 {
         let delta = mixed_path(scale, i as f64 / 300.0);
@@ -211,65 +287,16 @@ fn check_mixed(law: &Arc<dyn InterfaceLaw>, scale: f64) -> Vec<CheckResult> {
         let r = match law.evaluate_mixed(delta, &committed, &mut trial) {
             Ok(r) => r,
             Err(e) => {
-                failures.push(format!("error at opening {delta:?}: {}", e.0));
+                stats.failures.push(format!("error at opening {delta:?}: {}", e.0));
                 break;
             }
         };
-        let norm = r.tangent.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
-        let mut scratch = vec![0.0; ns];
-        let mut value_at = |d: [f64; 3]| law.evaluate_mixed(d, &committed, &mut scratch).map(|r| r.value);
-        for j in 0..3 {
-            let shifted = |f: f64| {
-                let mut d = delta;
-                d[j] += f * h;
-                d
-            };
-            let (Ok(vp), Ok(vm), Ok(vp10), Ok(vm10)) =
-                (value_at(shifted(1.0)), value_at(shifted(-1.0)), value_at(shifted(10.0)), value_at(shifted(-10.0)))
-            else {
-                continue;
-            };
-            for k in 0..3 {
-                let fd = (vp[k] - vm[k]) / (2.0 * h);
-                let wide = (vp10[k] - vm10[k]) / (20.0 * h);
-                let (forward, backward) = ((vp[k] - r.value[k]) / h, (r.value[k] - vm[k]) / h);
-                if (fd - wide).abs() > 1e-4 * norm || (forward - backward).abs() > 1e-3 * norm {
-                    skipped += 1;
-                    continue;
-                }
-                checked += 1;
-                let err = (r.tangent[k][j] - fd).abs() / norm;
-                worst = worst.max(err);
-                if err > 1e-5 {
-                    failures.push(format!(
-                        "opening {delta:.3?}: d value_{k} / d gap_{j} = {:.6e}, finite difference {fd:.6e}",
-                        r.tangent[k][j]
-                    ));
-                }
-            }
-        }
-        // normal-only evaluation must be the normal part of the mixed law
-        let mut a = vec![0.0; ns];
-        let mut b = vec![0.0; ns];
-        if let (Ok(n), Ok(m)) =
-            (law.evaluate(delta[0], &committed, &mut a), law.evaluate_mixed([delta[0], 0.0, 0.0], &committed, &mut b))
-        {
-            if n.value != m.value[0] || n.tangent != m.tangent[0][0] || a != b {
-                consistent = false;
-            }
-        }
-        // rotating the slip by 90 degrees in the tangential plane
-        let rotated = [delta[0], -delta[2], delta[1]];
-        if let Ok(q) = law.evaluate_mixed(rotated, &committed, &mut b) {
-            let expected = [r.value[0], -r.value[2], r.value[1]];
-            if (0..3).any(|k| {
-                (q.value[k] - expected[k]).abs() > 1e-9 * r.value.iter().fold(1e-300f64, |m, v| m.max(v.abs()))
-            }) {
-                isotropic = false;
-            }
-        }
+        compare_mixed_tangent(law, delta, &committed, &r, h, &mut stats);
+        consistent &= normal_only_is_consistent(law, delta, &committed);
+        isotropic &= is_isotropic_at(law, delta, &committed, &r);
         committed = trial;
     }
+    let TangentStats { worst, checked, skipped, failures } = stats;
     vec![
         CheckResult {
             informative: false,
