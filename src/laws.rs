@@ -32,6 +32,7 @@ fn builtin_holders() -> &'static [DescriptorHolder] {
             DescriptorHolder::new::<stiction_law_lennard_jones::LennardJones>(),
             DescriptorHolder::new::<stiction_law_ru_asperity::RuAsperity>(),
             DescriptorHolder::new::<stiction_law_cohesive_zone::CohesiveZone>(),
+            DescriptorHolder::new::<stiction_law_hertz_asperity::HertzAsperity>(),
         ]
     })
 }

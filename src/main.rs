@@ -213,7 +213,7 @@ enum SurfaceCommand {
     /// Measure a height map (`.gsf`, or text with --columns or --pixel-size): rms height and
     /// slope, the Hurst exponent from its spectrum, and its summits (pixels higher than their 8
     /// neighbours) with their density, height spread and radii; with --out, summits.csv,
-    /// surface-stats.json, top-view.png and summit-heights.png/.svg.
+    /// surface-stats.json, top-view.png/.svg and summit-heights.png/.svg.
     Stats {
         /// The height map.
         file: PathBuf,

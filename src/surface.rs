@@ -142,8 +142,9 @@ pub fn stats(path: &Path, options: &StatsOptions, out: Option<&Path>) -> Result<
         let json = serde_json::to_string_pretty(&report).expect("the report serializes");
         let file = dir.join("surface-stats.json");
         stiction_core::output::write_atomically(&file, json.as_bytes()).map_err(|e| written(&file)(e.to_string()))?;
-        plot_top_view(&dir.join("top-view.png"), &map, &summits).map_err(written(&dir.join("top-view.png")))?;
         for ext in ["png", "svg"] {
+            let file = dir.join(format!("top-view.{ext}"));
+            plot_top_view(&file, &map, &summits).map_err(written(&file))?;
             let file = dir.join(format!("summit-heights.{ext}"));
             plot_histogram(&file, &map, &summits).map_err(written(&file))?;
         }
@@ -159,11 +160,23 @@ fn write_summits(path: &Path, summits: &[Summit]) -> Result<(), SurfaceError> {
     stiction_core::output::write_atomically(path, text.as_bytes()).map_err(|e| written(path)(e.to_string()))
 }
 
-/// The map in grey levels (at most 512 x 512 cells: larger maps are sampled) with its summits
-/// as red dots.
+/// The map in grey levels with its summits as red dots: the PNG with at most 512 x 512 cells,
+/// the SVG (a rectangle per cell) with at most 128 x 128; larger maps are sampled.
 fn plot_top_view(path: &Path, map: &HeightMap, summits: &[Summit]) -> Result<(), String> {
+    if path.extension().is_some_and(|e| e == "svg") {
+        draw_top_view(SVGBackend::new(path, (720, 660)).into_drawing_area(), map, summits, 128)
+    } else {
+        draw_top_view(BitMapBackend::new(path, (720, 660)).into_drawing_area(), map, summits, 512)
+    }
+}
+
+fn draw_top_view<DB: DrawingBackend>(
+    root: DrawingArea<DB, plotters::coord::Shift>,
+    map: &HeightMap,
+    summits: &[Summit],
+    max_cells: usize,
+) -> Result<(), String> {
     let (lx, ly) = map.size();
-    let root = BitMapBackend::new(path, (720, 660)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let mut chart = ChartBuilder::on(&root)
         .caption(format!("height map and its {} summits", summits.len()), ("sans-serif", 20))
@@ -180,7 +193,7 @@ fn plot_top_view(path: &Path, map: &HeightMap, summits: &[Summit]) -> Result<(),
         .draw()
         .map_err(|e| e.to_string())?;
     let (lo, hi) = map.z.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &z| (a.min(z), b.max(z)));
-    let step = map.nx.max(map.ny).div_ceil(512);
+    let step = map.nx.max(map.ny).div_ceil(max_cells);
     let cells = (0..map.ny).step_by(step).flat_map(|j| (0..map.nx).step_by(step).map(move |i| (i, j)));
     chart
         .draw_series(cells.map(|(i, j)| {

@@ -2,8 +2,9 @@
 //! one must end with the stated exit status and a message containing the stated phrase (the
 //! culprit: a key, a file, a line), never a panic and never a silent success.
 //!
-//! Cases: the shipped rough-w6-quick, hertz-axisym, lame-sphere-axisym and cantilever cases,
-//! broken with `--set` or by a scratch copy; `stiction calibrate` on broken tables.
+//! Cases: the shipped rough-w6-quick, hertz-axisym, lame-sphere-axisym, cantilever and
+//! afm-hemisphere cases, broken with `--set` or by a scratch copy; `stiction calibrate` on
+//! broken tables.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -13,6 +14,7 @@ const ROUGH: &str = "cases/ru-rough-sphere/rough-w6-quick.toml";
 const HERTZ: &str = "cases/validation/hertz-axisym.toml";
 const LAME: &str = "cases/validation/lame-sphere-axisym.toml";
 const CANTILEVER: &str = "cases/validation/cantilever.toml";
+const AFM: &str = "cases/rough-surface/afm-hemisphere.toml";
 
 /// One broken input: the program's arguments (`{scratch}` stands for the scratch folder), the
 /// exit status and a phrase the message must contain.
@@ -138,6 +140,68 @@ const CASES: &[Broken] = &[
     bad(&["plugins", "--plugin-path", "Cargo.toml"], "--plugin-path 'Cargo.toml' is a file"),
 ];
 
+/// A case's height map (`points.surface`): broken files, units, regions and summits.
+const HEIGHT_MAPS: &[Broken] = &[
+    bad(&["check", AFM, "--set", "interfaces.0.points.region_radius=200.0"], "is smaller than the case's region"),
+    bad(&["check", AFM, "--set", "interfaces.0.points.surface.centre=[10.0, 10.0]"], "around (10.0000, 10.0000) needs"),
+    bad(&["check", AFM, "--set", "interfaces.0.points.surface.threshold=50.0"], "no summit of"),
+    bad(
+        &["check", AFM, "--set", "interfaces.0.points.surface.pixel_size=1.0"],
+        "is a .gsf file, which states its own size",
+    ),
+    bad(&["check", AFM, "--set", "interfaces.0.points.surface.threshold=-1.0"], "points.surface.threshold': must be"),
+    bad(&["check", AFM, "--set", "interfaces.0.points.density=0.0079"], "points.density': the points come from"),
+    bad(&["check", AFM, "--set", "interfaces.0.points.surface.file=\"no-such.gsf\""], "no-such.gsf': No such file"),
+    bad(
+        &["check", AFM, "--set", "interfaces.0.points.surface.file=\"{scratch}/truncated.gsf\""],
+        "truncated: 256 x 256",
+    ),
+    bad(
+        &["check", AFM, "--set", "interfaces.0.points.surface.file=\"{scratch}/heights.txt\""],
+        "is a text map: give its pixel_size",
+    ),
+    bad(
+        &["check", AFM, "--set", "interfaces.0.points.surface={ file = \"{scratch}/heights.txt\", pixel_size = 1.0 }"],
+        "states no unit for its lengths",
+    ),
+    bad(
+        &[
+            "check",
+            AFM,
+            "--set",
+            "interfaces.0.points.surface={ file = \"{scratch}/heights.txt\", pixel_size = 1.0, unit = \"furlong\" }",
+        ],
+        "in 'furlong', which is not one of",
+    ),
+    bad(
+        &[
+            "check",
+            AFM,
+            "--set",
+            "interfaces.0.points.surface={ file = \"{scratch}/heights.txt\", pixel_size = 0.0, unit = \"nm\" }",
+        ],
+        "points.surface.pixel_size': must be a finite number > 0",
+    ),
+    bad(
+        &[
+            "check",
+            AFM,
+            "--set",
+            "interfaces.0.points.surface={ file = \"{scratch}/nan.txt\", pixel_size = 1.0, unit = \"nm\" }",
+        ],
+        "nan.txt': line 2: NaN is not a finite number",
+    ),
+    bad(
+        &[
+            "check",
+            AFM,
+            "--set",
+            "interfaces.0.points.surface={ file = \"{scratch}/irregular.txt\", columns = true, unit = \"nm\" }",
+        ],
+        "irregular.txt': the grid is not regular",
+    ),
+];
+
 /// `stiction calibrate` on broken tables: each names the file, the line and the column.
 const TABLES: &[Broken] = &[
     bad(
@@ -187,6 +251,12 @@ fn scratch() -> PathBuf {
     std::fs::create_dir_all(dir.join("syntax")).unwrap();
     std::fs::write(dir.join("syntax").join("case.toml"), "name = \"x\"\n[mesh\ngeo = \"a.geo\"\n").unwrap();
     std::fs::write(dir.join("not-a-library.so"), "not a shared library\n").unwrap();
+    std::fs::write(dir.join("heights.txt"), "0 1 2\n3 4 5\n6 7 8\n").unwrap();
+    std::fs::write(dir.join("nan.txt"), "0 1 2\n3 nan 5\n6 7 8\n").unwrap();
+    std::fs::write(dir.join("irregular.txt"), "0 0 1\n1 0 1\n3 0 1\n0 1 1\n1 1 1\n3 1 1\n0 2 1\n1 2 1\n3 2 1\n")
+        .unwrap();
+    let map = std::fs::read(root().join("cases/rough-surface/ru-film-256nm.gsf")).unwrap();
+    std::fs::write(dir.join("truncated.gsf"), &map[..100_000]).unwrap();
     let header = "distance,force,area,branch,max_distance\n";
     let tables = [
         ("nan-distance.csv", format!("{header}0.1,1.0,1.0,loading,0\n0.2,2.0,2.0,loading,0\nnan,3.0,3.0,loading,0\n")),
@@ -271,6 +341,11 @@ fn mesh_problems_name_the_key_or_the_geo() {
 #[test]
 fn case_files_laws_and_plugins_name_the_culprit() {
     check_corpus(CASES);
+}
+
+#[test]
+fn height_maps_name_the_file_the_key_and_the_fault() {
+    check_corpus(HEIGHT_MAPS);
 }
 
 #[test]

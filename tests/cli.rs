@@ -71,7 +71,11 @@ fn a_generated_surface_measures_back_to_its_rms_height_and_hurst_exponent() {
     assert!((hurst / 0.7 - 1.0).abs() < 0.05, "Hurst exponent {hurst}");
     let summits = std::fs::read_to_string(out.join("summits.csv")).unwrap();
     assert_eq!(summits.lines().count() - 1, report["statistics"]["summits"].as_u64().unwrap() as usize);
-    assert!(out.join("top-view.png").exists() && out.join("summit-heights.svg").exists());
+    assert!(
+        ["top-view.png", "top-view.svg", "summit-heights.png", "summit-heights.svg"]
+            .iter()
+            .all(|f| out.join(f).exists())
+    );
 }
 
 /// Bad height maps: exit 2 naming the file and what is wrong, never a panic.

@@ -103,6 +103,35 @@ impl HeightMap {
     }
 }
 
+/// A length unit in metres: m, mm, um (or µm), nm, pm, A (or Å, angstrom); `None` for any
+/// other name.
+pub fn metres_per_unit(unit: &str) -> Option<f64> {
+    match unit.trim() {
+        "m" => Some(1.0),
+        "mm" => Some(1e-3),
+        "um" | "µm" | "μm" => Some(1e-6),
+        "nm" => Some(1e-9),
+        "pm" => Some(1e-12),
+        "A" | "Å" | "angstrom" => Some(1e-10),
+        _ => None,
+    }
+}
+
+/// The length units [`metres_per_unit`] knows, for messages.
+pub const LENGTH_UNITS: &str = "m, mm, um, nm, pm, A";
+
+impl HeightMap {
+    /// The map in other units: lengths in the plane times `in_plane`, heights times `height`.
+    pub fn converted(mut self, in_plane: f64, height: f64, (xy_unit, z_unit): (&str, &str)) -> Self {
+        self.dx *= in_plane;
+        self.dy *= in_plane;
+        self.z.iter_mut().for_each(|h| *h *= height);
+        self.xy_unit = xy_unit.into();
+        self.z_unit = z_unit.into();
+        self
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -10,12 +10,19 @@ use stiction_core::CoreError;
 use stiction_core::mesh::Mesh;
 
 /// A discrete point: in-plane coordinates (along two directions orthogonal to the normal,
-/// measured from the surface's lowest point) and its height toward the flat.
+/// measured from the surface's lowest point) and its height toward the flat; and its radius
+/// where the layout knows one (a height map's summit), for laws that keep a per-point radius
+/// ([`RADIUS_STATE`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DiscretePoint {
     pub in_plane: [f64; 2],
     pub height: f64,
+    pub radius: Option<f64>,
 }
+
+/// The state variable through which a force-per-point law takes each point's own radius
+/// (e.g. `hertz-asperity`): a law that declares a state of this name gets the layout's radii.
+pub const RADIUS_STATE: &str = "radius";
 
 /// One placed point.
 #[derive(Debug, Clone)]
@@ -28,6 +35,20 @@ pub struct PlacedPoint {
     pub position: [f64; 3],
     /// Mean corner area of the faces under the point (or its footprint).
     pub face_area: f64,
+}
+
+/// The in-plane origin of a surface's points, its pole: the surface's lowest node along
+/// `normal`; where several are lowest (a flat face, within a billionth of the surface's
+/// extent), the one nearest their middle.
+fn pole(nodes: Vec<[f64; 3]>, normal: [f64; 3]) -> [f64; 3] {
+    let level_of = |x: &[f64; 3]| (0..3).map(|k| x[k] * normal[k]).sum::<f64>();
+    let lowest = nodes.iter().map(level_of).fold(f64::INFINITY, f64::min);
+    let extent = nodes.iter().flat_map(|x| x.iter().map(|c| c.abs())).fold(0.0f64, f64::max);
+    let bottom: Vec<[f64; 3]> =
+        nodes.into_iter().filter(|x| level_of(x) <= lowest + 1e-9 * extent.max(f64::MIN_POSITIVE)).collect();
+    let middle: [f64; 3] = std::array::from_fn(|k| bottom.iter().map(|x| x[k]).sum::<f64>() / bottom.len() as f64);
+    let distance = |x: &[f64; 3]| (0..3).map(|k| (x[k] - middle[k]).powi(2)).sum::<f64>();
+    *bottom.iter().min_by(|a, b| distance(a).total_cmp(&distance(b))).expect("a surface group has nodes")
 }
 
 /// Places `discrete` on group `surface` for interface `name` (unit `normal` from the flat
@@ -45,13 +66,7 @@ pub fn place_points(
     let group = mesh.group(surface)?;
     let locator = SurfaceLocator::new(mesh, group, normal)?;
     let level_of = |x: [f64; 3]| (0..3).map(|k| x[k] * normal[k]).sum::<f64>();
-    // In-plane origin: the lowest node of the surface (the pole).
-    let pole = mesh
-        .group_nodes(group)
-        .iter()
-        .map(|&n| mesh.nodes[n])
-        .min_by(|a, b| level_of(*a).total_cmp(&level_of(*b)))
-        .expect("a surface group has nodes");
+    let pole = pole(mesh.group_nodes(group).iter().map(|&n| mesh.nodes[n]).collect(), normal);
     let (e1, e2) = plane_basis(normal);
     let pole_level = level_of(pole);
     let mut points = Vec::with_capacity(discrete.len());
@@ -100,4 +115,21 @@ pub fn place_points(
         points.push(point);
     }
     Ok((points, pole_level))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::pole;
+
+    /// A flat face's pole is its lowest node nearest the middle; a curved surface's its single
+    /// lowest node, wherever that lies.
+    #[test]
+    fn the_pole_of_a_flat_face_is_its_middle_node() {
+        let mut face: Vec<[f64; 3]> = (0..9).map(|k| [(k % 3) as f64 * 10.0, (k / 3) as f64 * 10.0, 0.0]).collect();
+        face.push([10.0, 10.0, 5.0]); // above the face: not on it
+        face.rotate_left(5); // neither a corner nor the middle first
+        assert_eq!(pole(face, [0.0, 0.0, 1.0]), [10.0, 10.0, 0.0]);
+        let cap: Vec<[f64; 3]> = vec![[0.0, 0.0, 0.2], [3.0, 1.0, 0.0], [5.0, 5.0, 0.1]];
+        assert_eq!(pole(cap, [0.0, 0.0, 1.0]), [3.0, 1.0, 0.0]);
+    }
 }

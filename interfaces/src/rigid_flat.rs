@@ -300,6 +300,12 @@ impl RigidFlat {
         self.state_trial.copy_from_slice(&self.state_committed);
     }
 
+    /// The index of the law's state variable named `name` (the point's own value of a
+    /// per-point parameter, e.g. [`crate::point_placement::RADIUS_STATE`]).
+    pub fn state_index(&self, name: &str) -> Option<usize> {
+        self.law.state_names().iter().position(|n| n == name)
+    }
+
     /// Each point's nodes, their weights in its displacement (shape functions or footprint)
     /// and the mean corner area of the faces under it (discrete points; 0 otherwise).
     pub fn point_weights(&self) -> impl Iterator<Item = (&[usize], &[f64], f64)> {

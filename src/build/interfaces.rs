@@ -259,6 +259,7 @@ fn rigid_flat(
                 points.footprint_area,
             )
             .map_err(|e| case.error(key, e.to_string()))?;
+            per_point_radii(&mut flat, &list, spec);
             let computed = points.footprint_correction.as_ref().is_some_and(|c| c.compliance.is_none());
             let mut compliances = None;
             if let (true, Some(flexibility)) = (computed, ctx.flexibility) {
@@ -282,6 +283,27 @@ fn rigid_flat(
         }
     };
     Ok((Box::new(flat.map_err(|e| case.error(key, e.to_string()))?), layout, compliances))
+}
+
+/// Gives each point its layout's radius (a height map's summit) where the law keeps a
+/// per-point radius; says so where it keeps none.
+fn per_point_radii(flat: &mut stiction_interfaces::RigidFlat, list: &[DiscretePoint], spec: &InterfaceSpec) {
+    if list.iter().all(|p| p.radius.is_none()) {
+        return;
+    }
+    match flat.state_index(stiction_interfaces::point_placement::RADIUS_STATE) {
+        Some(k) => flat.set_point_states(|i, state| {
+            if let Some(r) = list[i].radius {
+                state[k] = r;
+            }
+        }),
+        None => eprintln!(
+            "interface '{}': law '{}' keeps no per-point radius (a state named '{}'): the layout's radii are written to the points file but not used",
+            spec.name,
+            spec.law,
+            stiction_interfaces::point_placement::RADIUS_STATE
+        ),
+    }
 }
 
 type FlatAndLayout = (Box<dyn Contribution>, Option<Vec<DiscretePoint>>, Option<footprint_correction::CompliancesSet>);

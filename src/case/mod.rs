@@ -383,20 +383,28 @@ pub struct ResistanceSpec {
 #[derive(Debug, Clone, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PointsSpec {
-    /// CSV with header `x,y,height`: in-plane coordinates from the surface's lowest point along
-    /// two directions normal to the flat, and the height toward the flat. Relative to the case.
+    /// CSV with header `x,y,height` or `x,y,height,radius`: in-plane coordinates from the
+    /// surface's lowest point along two directions normal to the flat, the height toward the
+    /// flat, and the point's radius for laws that keep one. Relative to the case.
     pub file: Option<PathBuf>,
     /// Points per unit area (generator).
     #[schemars(extend("exclusiveMinimum" = 0.0))]
     #[schemars(extend("x-unit" = "1/length^2"))]
     #[schemars(extend("x-applies" = "generated layouts"))]
     pub density: Option<f64>,
-    /// Radius of the region around the lowest point, projected on the flat (generator).
+    /// A measured or generated height map whose summits (as `stiction surface stats` finds
+    /// them) are the points: the map's mean plane is the body's surface, a summit's height above
+    /// it offsets its law's distance, and its radius goes to laws that keep one (a state named
+    /// `radius`, as `hertz-asperity` does); the map's lengths are converted to `[units] length`.
+    pub surface: Option<SurfaceMapSpec>,
+    /// Radius of the region around the lowest point, projected on the flat (generator; for a
+    /// height map, the summits within this distance of `surface.centre`).
     #[schemars(extend("exclusiveMinimum" = 0.0))]
     #[schemars(extend("x-unit" = "length"))]
-    #[schemars(extend("x-applies" = "generated layouts"))]
+    #[schemars(extend("x-applies" = "generated layouts, height maps"))]
     pub region_radius: Option<f64>,
-    /// Minimum distance between points (generator, default 0).
+    /// Minimum distance between points (generator, default 0; for a height map: of two
+    /// summits closer than this, the lower is left out).
     #[serde(default)]
     #[schemars(range(min = 0.0))]
     #[schemars(extend("x-unit" = "length"))]
@@ -427,6 +435,38 @@ pub struct PointsSpec {
     /// meshes coarser than the footprint; needs `footprint_area`): see
     /// `stiction_interfaces::local_footprint`.
     pub footprint_correction: Option<FootprintCorrectionSpec>,
+}
+
+/// `points.surface`: a measured or generated height map whose summits (8-neighbour rule, radius
+/// from the mean curvature; see `stiction surface stats`) become the points. The map's mean
+/// plane is the body's surface: a summit's height above it is the point's height toward the
+/// flat, and its radius goes to laws that keep a per-point radius (a state named `radius`, as
+/// `hertz-asperity` does). The map's lengths and heights are converted to the case's
+/// `[units] length`.
+#[derive(Debug, Clone, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceMapSpec {
+    /// The map, relative to the case: a Gwyddion Simple Field file (`.gsf`), or text: a matrix
+    /// of heights (with `pixel_size`) or `x y z` columns on a regular grid (with `columns`).
+    pub file: PathBuf,
+    /// The unit of the map's lengths and heights where the file states none (text files): m,
+    /// mm, um, nm, pm or A. A `.gsf` file's `XYUnits` and `ZUnits` come first.
+    pub unit: Option<String>,
+    /// A text matrix's pixel size, in the map's unit.
+    #[schemars(extend("exclusiveMinimum" = 0.0))]
+    pub pixel_size: Option<f64>,
+    /// A text file of `x y z` columns (default false: a matrix of heights).
+    #[serde(default)]
+    pub columns: bool,
+    /// The map point put at the surface's pole, from the map's corner in the map's unit
+    /// (default: the map's middle).
+    pub centre: Option<[f64; 2]>,
+    /// Summits lower than this above the map's mean plane are left out (default 0: the
+    /// summits above the mean plane).
+    #[serde(default)]
+    #[schemars(range(min = 0.0))]
+    #[schemars(extend("x-unit" = "length"))]
+    pub threshold: f64,
 }
 
 /// The local correction of a footprint the mesh does not resolve: an elastic compliance in

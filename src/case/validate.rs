@@ -233,6 +233,33 @@ fn points(case: &LoadedCase, key: &str, p: &super::PointsSpec) -> Result<()> {
             return Err(case.error(format!("{key}.{k}"), format!("must be a finite number >= 0, got {v}")));
         }
     }
+    if let Some(map) = &p.surface {
+        let generator = [("file", p.file.is_some()), ("density", p.density.is_some()), ("height", p.height.is_some())];
+        if let Some((k, _)) = generator.iter().find(|(_, given)| *given) {
+            return Err(case.error(
+                format!("{key}.{k}"),
+                "the points come from the height map (surface): give the map or this key, not both",
+            ));
+        }
+        if p.height_std != 0.0 {
+            return Err(case.error(format!("{key}.height_std"), "the heights come from the height map (surface)"));
+        }
+        if !(map.threshold.is_finite() && map.threshold >= 0.0) {
+            return Err(case.error(
+                format!("{key}.surface.threshold"),
+                format!(
+                    "must be a finite number >= 0, got {}: the map's mean plane is the body's surface, and a summit below it would lie inside the body",
+                    map.threshold
+                ),
+            ));
+        }
+        if let Some(d) = map.pixel_size {
+            positive(case, &format!("{key}.surface.pixel_size"), d)?;
+        }
+        if let Some(c) = map.centre.filter(|c| !c.iter().all(|x| x.is_finite())) {
+            return Err(case.error(format!("{key}.surface.centre"), format!("must be two finite numbers, got {c:?}")));
+        }
+    }
     if let Some(c) = &p.footprint_correction {
         if !(p.footprint_area > 0.0) {
             return Err(case.error(
@@ -278,17 +305,18 @@ fn points(case: &LoadedCase, key: &str, p: &super::PointsSpec) -> Result<()> {
 /// The case's length unit in metres, for keys given in SI (the contact resistance's
 /// resistivity).
 pub fn metres_per_length_unit(case: &LoadedCase, key: &str) -> Result<f64> {
-    let unit = case.case.units.as_ref().map(|u| u.length.as_str());
-    match unit {
-        Some("m") => Ok(1.0),
-        Some("mm") => Ok(1e-3),
-        Some("um") | Some("µm") => Ok(1e-6),
-        Some("nm") => Ok(1e-9),
-        Some(other) => Err(case.error(
-            key,
-            format!("needs the case's length unit in metres, but units.length = '{other}' is not one of m, mm, um, nm"),
-        )),
-        None => Err(case
-            .error(key, "needs [units] length = \"m\", \"mm\", \"um\" or \"nm\" to convert the resistivity (ohm m)")),
+    use stiction_interfaces::height_map::{LENGTH_UNITS, metres_per_unit};
+    match case.case.units.as_ref().map(|u| u.length.as_str()) {
+        Some(unit) => metres_per_unit(unit).ok_or_else(|| {
+            case.error(
+                key,
+                format!(
+                    "needs the case's length unit in metres, but units.length = '{unit}' is not one of {LENGTH_UNITS}"
+                ),
+            )
+        }),
+        None => {
+            Err(case.error(key, format!("needs [units] length (one of {LENGTH_UNITS}) to convert its SI or map units")))
+        }
     }
 }

@@ -122,6 +122,33 @@ impl RingGrid {
     }
 }
 
+/// A sphere's cap on rings: their edges, midpoints and areas, the sphere's profile
+/// s = R - sqrt(R^2 - r^2) at the midpoints, and the half-space's influence matrix C (the
+/// displacement at midpoint i of a unit pressure on ring j).
+pub struct Rings {
+    pub edges: Vec<f64>,
+    pub mid: Vec<f64>,
+    pub ring_area: Vec<f64>,
+    pub profile: Vec<f64>,
+    pub influence: Mat<f64>,
+}
+
+impl Rings {
+    /// The rings of `grid` on a sphere of radius `radius` and modulus `e_star`.
+    pub fn new(radius: f64, e_star: f64, grid: RingGrid) -> Self {
+        assert!(grid.outer_radius < 0.5 * radius, "the grid must stay on the cap of the sphere");
+        let edges = grid.edges();
+        let n = edges.len() - 1;
+        let mid: Vec<f64> = (0..n).map(|j| 0.5 * (edges[j] + edges[j + 1])).collect();
+        let ring_area = (0..n).map(|j| PI * (edges[j + 1].powi(2) - edges[j].powi(2))).collect();
+        let profile = mid.iter().map(|&x| radius - (radius * radius - x * x).sqrt()).collect();
+        let influence = Mat::from_fn(n, n, |i, j| {
+            disc_displacement(mid[i], edges[j + 1], e_star) - disc_displacement(mid[i], edges[j], e_star)
+        });
+        Self { edges, mid, ring_area, profile, influence }
+    }
+}
+
 /// One equilibrium on the load-approach curve.
 #[derive(Clone, Copy, Debug)]
 pub struct CurvePoint {
@@ -157,16 +184,7 @@ pub struct HalfSpaceLj {
 
 impl HalfSpaceLj {
     pub fn new(sphere: SphereLj, grid: RingGrid) -> Self {
-        assert!(grid.outer_radius < 0.5 * sphere.radius, "the grid must stay on the cap of the sphere");
-        let edges = grid.edges();
-        let n = edges.len() - 1;
-        let mid: Vec<f64> = (0..n).map(|j| 0.5 * (edges[j] + edges[j + 1])).collect();
-        let ring_area = (0..n).map(|j| PI * (edges[j + 1].powi(2) - edges[j].powi(2))).collect();
-        let r = sphere.radius;
-        let profile = mid.iter().map(|&x| r - (r * r - x * x).sqrt()).collect();
-        let influence = Mat::from_fn(n, n, |i, j| {
-            disc_displacement(mid[i], edges[j + 1], sphere.e_star) - disc_displacement(mid[i], edges[j], sphere.e_star)
-        });
+        let Rings { edges, mid, ring_area, profile, influence } = Rings::new(sphere.radius, sphere.e_star, grid);
         Self { sphere, edges, mid, ring_area, profile, influence }
     }
 

@@ -2,6 +2,8 @@
 //! distortion, direct linear/Newton solves of a model, L2 error norms, and running shipped case
 //! files into a scratch output directory.
 
+pub mod greenwood_tripp;
+pub mod gw_surface;
 pub mod half_space_lj;
 pub mod validation_record;
 
@@ -46,6 +48,15 @@ pub fn claim_output_dir(label: &str) -> PathBuf {
     let fresh = CLAIMED.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).insert(label.to_string());
     assert!(fresh, "two tests write into target/test-out/{label}: give one of them another label");
     workspace_root().join("target").join("test-out").join(label)
+}
+
+/// Runs the case file at `path` (a test's own, e.g. written into its claimed folder) into `out`,
+/// with no overrides.
+pub fn run_case_file(path: &std::path::Path, out: PathBuf) -> RunSummary {
+    let loaded = case::load(path, &[]).unwrap_or_else(|e| panic!("{e}"));
+    let mut built = stiction::build::build(&loaded).unwrap_or_else(|e| panic!("{e}"));
+    let options = RunOptions { out: Some(out), overwrite: true, ..Default::default() };
+    run_model(&loaded, &mut built, &options).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Loads a shipped case (path relative to the workspace root), applies `--set` overrides, runs

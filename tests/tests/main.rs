@@ -17,6 +17,8 @@ mod dissipation_control;
 mod elastic_references;
 mod footprint;
 mod footprint_correction;
+mod greenwood_tripp;
+mod greenwood_williamson;
 mod hertz;
 mod hill_sphere;
 mod jackson_green;

@@ -171,3 +171,49 @@ fn the_shipped_default_meets_the_papers_global_statements_on_the_quick_mesh() {
     );
     assert!(smooth_pull_off < p1 && i_smooth.max_contact_area > i_rough.max_contact_area);
 }
+
+/// The shipped height-map case: each summit of its map (found here by the library, the
+/// 8-neighbour rule above the mean plane, the higher of two closer than 3.5 nm) within 117.6 nm
+/// of the map's middle is one point, at its offset from the middle, its height and its radius;
+/// and the run lets go of the flat (every asperity separated).
+#[test]
+fn the_afm_hemisphere_places_every_summit_of_its_map_and_separates() {
+    use stiction_interfaces::height_map::{gsf, summits};
+    let map = gsf::read(&workspace_root().join("cases/rough-surface/ru-film-256nm.gsf")).unwrap();
+    let middle = [(map.nx - 1) as f64 * map.dx / 2.0, (map.ny - 1) as f64 * map.dy / 2.0];
+    let mut expected: Vec<[f64; 4]> = summits::find(&map, summits::SummitRule { threshold: 0.0, min_spacing: 3.5 })
+        .iter()
+        .map(|s| [s.x - middle[0], s.y - middle[1], s.height, s.radius])
+        .filter(|p| p[0].hypot(p[1]) <= 117.6)
+        .collect();
+    let (_, summary) = run_case("cases/rough-surface/afm-hemisphere.toml", &["output.vtk=false"], "afm-hemisphere");
+    assert_eq!(summary.status, "completed", "{:?}", summary.message);
+    let text = std::fs::read_to_string(summary.output_directory.join("asperities_points.csv")).unwrap();
+    assert_eq!(text.lines().next(), Some("x,y,height,radius"));
+    let mut placed: Vec<[f64; 4]> = text
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2], v[3]]
+        })
+        .collect();
+    let order = |v: &mut Vec<[f64; 4]>| v.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    order(&mut expected);
+    order(&mut placed);
+    assert!(expected.len() > 150, "{} summits in the region", expected.len());
+    assert_eq!(placed.len(), expected.len());
+    for (p, e) in placed.iter().zip(&expected) {
+        for k in 0..4 {
+            assert!((p[k] - e[k]).abs() <= 1e-8 * (1.0 + e[k].abs()), "placed {p:?}, summit {e:?}");
+        }
+    }
+    let asperities = &summary.interfaces[0];
+    assert!(asperities.separated && asperities.final_n_contact == 0, "{asperities:?}");
+    println!(
+        "afm-hemisphere: {} summits; max force {:.1} nN, pull-off {:.1} nN",
+        placed.len(),
+        asperities.max_force,
+        asperities.pull_off_force.unwrap()
+    );
+}
