@@ -13,6 +13,7 @@ pub mod ensemble;
 pub mod error;
 pub mod fit;
 pub mod laws;
+pub mod md;
 pub mod output_folder;
 pub mod plots;
 pub mod plugin_check;

@@ -171,6 +171,17 @@ enum Command {
         #[command(subcommand)]
         command: SurfaceCommand,
     },
+    /// Run the nano-asperity experiment with LAMMPS (an fcc asperity on a substrate pressed by
+    /// a flat counter-body to a maximum approach and pulled back) and write its force against
+    /// the approach as a table (force-distance.csv: distance in nm, force in nN), beside the
+    /// LAMMPS input, data file and log. Needs `lmp` (Debian: lammps) or STICTION_LAMMPS.
+    Md {
+        /// The MD file (TOML; see `stiction::md::spec`).
+        file: PathBuf,
+        /// Output folder (default: out/md-<file stem>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 #[derive(Subcommand)]
@@ -414,6 +425,31 @@ fn plot_runs(runs: &[PathBuf], output: &std::path::Path, title: &str) -> ExitCod
     }
     println!("wrote {}/force_approach.png/.svg and area_approach.png/.svg", output.display());
     ExitCode::SUCCESS
+}
+
+/// `stiction md`.
+fn md(file: &std::path::Path, out: Option<PathBuf>) -> ExitCode {
+    let stem = file.file_stem().map_or("md".into(), |s| s.to_string_lossy().to_string());
+    let out = out.unwrap_or_else(|| PathBuf::from("out").join(format!("md-{stem}")));
+    match stiction::md::run(file, &out) {
+        Ok(r) => {
+            println!(
+                "{}: {} atoms ({} in the asperity, {} in its base plane); force on the asperity from {:.3} to {:.3} nN; table in {}",
+                file.display(),
+                r.atoms,
+                r.asperity_atoms,
+                r.base_atoms,
+                r.min_force,
+                r.max_force,
+                out.join("force-distance.csv").display()
+            );
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
 }
 
 /// `stiction surface generate` and `stats`.
@@ -767,6 +803,7 @@ fn main() -> ExitCode {
             return plugin_check(&law, &params, config_file, gap_scale, &dirs);
         }
         Command::Surface { command } => return surface(command),
+        Command::Md { file, out } => return md(&file, out),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

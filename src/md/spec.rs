@@ -1,0 +1,239 @@
+//! The MD file (TOML; LAMMPS `metal` units: lengths in Angstrom, time in ps, speeds in m/s as the
+//! paper gives them, temperature in K).
+//!
+//! ```toml
+//! [lattice]
+//! constant = 4.08            # the fcc lattice constant a (Au), matching the potential's
+//! [substrate]
+//! width_cells = 8            # the periodic box's side, in cubic cells
+//! thickness = 12.0           # (001) planes below this height; the lowest two are held fixed
+//! [asperity]
+//! base_radius = 10.0         # a spherical cap grown on the substrate's lattice
+//! height = 8.0
+//! [counter]
+//! thickness = 6.0            # a flat, rigid (001) slab over the tip
+//! gap = 4.0                  # between the tip atom and the counter's lowest plane, at the start
+//! [potential]
+//! file = "/usr/share/lammps/potentials/Au_u3.eam"
+//! element = "Au"             # pair_style eam (DYNAMO funcfl: one element)
+//! [run]
+//! temperature = 300.0
+//! timestep = 0.002           # ps
+//! speed = 7.0                # m/s, the counter's
+//! max_approach = 2.0         # Angstrom
+//! seed = 1
+//! ```
+
+use super::MdError;
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MdSpec {
+    pub lattice: LatticeSpec,
+    pub substrate: SubstrateSpec,
+    pub asperity: AsperitySpec,
+    pub counter: CounterSpec,
+    pub potential: PotentialSpec,
+    pub run: RunSpec,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LatticeSpec {
+    /// The cubic fcc lattice constant (Angstrom).
+    pub constant: f64,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SubstrateSpec {
+    /// The periodic box's side in cubic cells.
+    pub width_cells: usize,
+    /// The substrate holds the (001) planes below this height (Angstrom).
+    pub thickness: f64,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AsperitySpec {
+    /// The cap's base radius on the substrate (Angstrom).
+    pub base_radius: f64,
+    /// The cap's height above the substrate (Angstrom).
+    pub height: f64,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CounterSpec {
+    /// The counter-body's thickness (Angstrom).
+    pub thickness: f64,
+    /// The gap between the tip atom and the counter's lowest plane at the start (Angstrom).
+    pub gap: f64,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PotentialSpec {
+    /// A DYNAMO funcfl EAM file (`pair_style eam`), relative to the MD file.
+    pub file: PathBuf,
+    /// The element's symbol; the file's atomic number must be its.
+    pub element: String,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunSpec {
+    /// Thermostat temperature (K).
+    pub temperature: f64,
+    /// Time step (ps).
+    pub timestep: f64,
+    /// The counter-body's speed (m/s).
+    pub speed: f64,
+    /// The approach at which loading turns to unloading (Angstrom).
+    pub max_approach: f64,
+    /// The seed of the initial velocities and the thermostat's noise.
+    #[serde(default = "one")]
+    pub seed: u64,
+}
+
+fn one() -> u64 {
+    1
+}
+
+/// The largest distance the counter may move in one time step, in lattice constants: a step
+/// that moves it farther jolts the atoms it touches.
+pub const MAX_STEP_MOTION: f64 = 1e-3;
+
+/// What a funcfl potential file says of its element.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Funcfl {
+    pub atomic_number: u32,
+    pub mass: f64,
+    pub lattice_constant: f64,
+    pub structure: String,
+}
+
+/// Reads the second line of a DYNAMO funcfl file: atomic number, mass, lattice constant,
+/// structure.
+pub fn read_funcfl(path: &Path) -> Result<Funcfl, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
+    let line =
+        text.lines().nth(1).ok_or_else(|| format!("'{}' has no second line (a funcfl EAM file)", path.display()))?;
+    let v: Vec<&str> = line.split_whitespace().collect();
+    let bad = || {
+        format!("'{}' line 2: expected 'atomic-number mass lattice-constant structure', found '{line}'", path.display())
+    };
+    if v.len() < 4 {
+        return Err(bad());
+    }
+    Ok(Funcfl {
+        atomic_number: v[0].parse().map_err(|_| bad())?,
+        mass: v[1].parse().map_err(|_| bad())?,
+        lattice_constant: v[2].parse().map_err(|_| bad())?,
+        structure: v[3].to_string(),
+    })
+}
+
+/// The atomic numbers of the elements a funcfl file may hold (the common EAM metals).
+pub fn atomic_number(symbol: &str) -> Option<u32> {
+    let table = [
+        ("Al", 13),
+        ("Ni", 28),
+        ("Cu", 29),
+        ("Ru", 44),
+        ("Rh", 45),
+        ("Pd", 46),
+        ("Ag", 47),
+        ("Ir", 77),
+        ("Pt", 78),
+        ("Au", 79),
+        ("Pb", 82),
+    ];
+    table.iter().find(|(s, _)| *s == symbol).map(|&(_, z)| z)
+}
+
+/// Reads and checks the MD file: every number in range, the potential's element and lattice
+/// the file's, a time step the speed allows.
+pub fn load(path: &Path) -> Result<(MdSpec, Funcfl), MdError> {
+    let file = |message: String| MdError::File { path: path.into(), message };
+    let text = std::fs::read_to_string(path).map_err(|e| file(format!("cannot read it: {e}")))?;
+    let mut spec: MdSpec = toml::from_str(&text).map_err(|e| file(e.to_string()))?;
+    let key = |k: &str, message: String| MdError::Key { path: path.into(), key: k.into(), message };
+    let positive = [
+        ("lattice.constant", spec.lattice.constant),
+        ("substrate.thickness", spec.substrate.thickness),
+        ("asperity.base_radius", spec.asperity.base_radius),
+        ("asperity.height", spec.asperity.height),
+        ("counter.thickness", spec.counter.thickness),
+        ("counter.gap", spec.counter.gap),
+        ("run.temperature", spec.run.temperature),
+        ("run.timestep", spec.run.timestep),
+        ("run.speed", spec.run.speed),
+        ("run.max_approach", spec.run.max_approach),
+    ];
+    for (k, v) in positive {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(key(k, format!("must be a finite number > 0, got {v}")));
+        }
+    }
+    if spec.substrate.width_cells < 2 {
+        return Err(key("substrate.width_cells", format!("must be at least 2, got {}", spec.substrate.width_cells)));
+    }
+    let a = spec.lattice.constant;
+    if 2.0 * spec.asperity.base_radius > (spec.substrate.width_cells as f64 - 1.0) * a {
+        return Err(key(
+            "asperity.base_radius",
+            format!(
+                "a base of diameter {} does not fit a box of {} cells ({} Angstrom) with a cell to spare: the asperity would touch its periodic image",
+                2.0 * spec.asperity.base_radius,
+                spec.substrate.width_cells,
+                spec.substrate.width_cells as f64 * a
+            ),
+        ));
+    }
+    let per_step = spec.run.speed * 0.01 * spec.run.timestep;
+    if per_step > MAX_STEP_MOTION * a {
+        return Err(key(
+            "run.timestep",
+            format!(
+                "at {} m/s the counter moves {per_step:.3e} Angstrom per step of {} ps; at most {:.3e} (a thousandth of the lattice constant): take a time step of at most {:.3e} ps",
+                spec.run.speed,
+                spec.run.timestep,
+                MAX_STEP_MOTION * a,
+                MAX_STEP_MOTION * a / (spec.run.speed * 0.01)
+            ),
+        ));
+    }
+    let base = path.parent().unwrap_or(Path::new("."));
+    spec.potential.file = base.join(&spec.potential.file);
+    let funcfl = read_funcfl(&spec.potential.file).map_err(|m| key("potential.file", m))?;
+    let z = atomic_number(&spec.potential.element).ok_or_else(|| {
+        key("potential.element", format!("'{}' is not an element this reader knows", spec.potential.element))
+    })?;
+    if z != funcfl.atomic_number {
+        return Err(key(
+            "potential.element",
+            format!(
+                "'{}' (Z = {z}) is not the element of '{}' (Z = {})",
+                spec.potential.element,
+                spec.potential.file.display(),
+                funcfl.atomic_number
+            ),
+        ));
+    }
+    if !funcfl.structure.eq_ignore_ascii_case("fcc") {
+        return Err(key(
+            "potential.file",
+            format!("its element is {}, not fcc: only fcc lattices are built", funcfl.structure),
+        ));
+    }
+    if (a / funcfl.lattice_constant - 1.0).abs() > 0.02 {
+        return Err(key(
+            "lattice.constant",
+            format!("{a} Angstrom does not match the potential's {} (2%)", funcfl.lattice_constant),
+        ));
+    }
+    Ok((spec, funcfl))
+}
