@@ -1,8 +1,9 @@
 //! `stiction md` with LAMMPS (installed by the test script): a tiny Au asperity (33 atoms on a
 //! 537-atom cell, EAM `Au_u3.eam`) pressed by a flat to 0.2 nm and pulled back at 100 m/s. The
 //! atoms repel on contact and, coming apart, hold on in a neck: the force on the asperity is
-//! compressive at the maximum approach and tensile on unloading. And the MD file's faults, and
-//! a LAMMPS that fails, are named.
+//! compressive at the maximum approach and tensile on unloading; the neck has no area apart and
+//! some at the maximum; `stiction calibrate` reads the table. And the MD file's faults, and a
+//! LAMMPS that fails, are named.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -49,12 +50,13 @@ fn a_tiny_au_asperity_repels_on_contact_and_holds_on_in_a_neck() {
     let (code, stdout, stderr) = stiction(&[file.as_os_str(), "--out".as_ref(), out.as_os_str()], None);
     assert_eq!(code, Some(0), "{stdout}\n{stderr}");
     let table = std::fs::read_to_string(out.join("force-distance.csv")).unwrap();
-    let rows: Vec<(f64, f64, String)> = table
+    let rows: Vec<(f64, f64, String, f64)> = table
         .lines()
+        .skip_while(|l| l.starts_with('#'))
         .skip(1)
         .map(|l| {
             let v: Vec<&str> = l.split(',').collect();
-            (v[0].parse().unwrap(), v[1].parse().unwrap(), v[2].to_string())
+            (v[0].parse().unwrap(), v[1].parse().unwrap(), v[3].to_string(), v[2].parse().unwrap())
         })
         .collect();
     let loading: Vec<_> = rows.iter().filter(|r| r.2 == "loading").collect();
@@ -68,9 +70,26 @@ fn a_tiny_au_asperity_repels_on_contact_and_holds_on_in_a_neck() {
     println!("force at the maximum approach {at_max:.2} nN, most tensile on unloading {most_tensile:.2} nN");
     assert!(at_max > 5.0, "repulsion at 0.2 nm: {at_max} nN");
     assert!(most_tensile < -5.0, "a neck on unloading: {most_tensile} nN");
-    for f in ["atoms.data", "in.stiction", "log.lammps"] {
+    // the neck: no area apart; at the maximum approach more than a few atoms' (a^2 / 2 each), and
+    // less than twice the cap's base (21 atoms, 1.75 nm^2: the crushed cap spreads)
+    let (apart, pressed) = (loading[0].3, loading[loading.len() - 1].3);
+    assert_eq!(apart, 0.0);
+    let base = 21.0 * 0.408f64.powi(2) / 2.0;
+    assert!(pressed > 0.5 && pressed < 2.0 * base, "area at 0.2 nm: {pressed} nm^2");
+    for f in ["atoms.data", "in.stiction", "log.lammps", "loading.lammpstrj", "unloading.lammpstrj"] {
         assert!(out.join(f).exists(), "{f}");
     }
+    // the table is one `stiction calibrate` reads
+    let calibration = dir.join("calibration.toml");
+    let status = Command::new(env!("CARGO_BIN_EXE_stiction"))
+        .args(["calibrate", "--work-of-adhesion", "1.0", "-o"])
+        .arg(&calibration)
+        .arg(out.join("force-distance.csv"))
+        .output()
+        .unwrap();
+    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
+    let text = std::fs::read_to_string(&calibration).unwrap();
+    assert!(text.contains("stiction md with LAMMPS"), "the provenance travels: {text}");
 }
 
 #[test]

@@ -8,7 +8,9 @@
 //! moved rigidly (`fix move`) down at the speed to `max_approach`, then up as far. The force on
 //! the counter along z (`fcm`, positive when the asperity pushes it away) and its height are
 //! averaged over every `AVERAGE_STEPS` steps (`fix ave/time`) into `loading.dat` and
-//! `unloading.dat`.
+//! `unloading.dat`; the atoms are dumped at the same steps (`loading.lammpstrj`,
+//! `unloading.lammpstrj`, which OVITO and ParaView open) for the neck's area
+//! ([`super::neck`]).
 
 use super::MdError;
 use super::geometry::{Assembly, Part};
@@ -86,11 +88,16 @@ pub fn input_file(spec: &MdSpec, assembly: &Assembly) -> String {
          thermo {avg}\n\
          fix move counter move linear 0.0 0.0 {down}\n\
          fix table all ave/time 1 {avg} {avg} v_zc v_fz file loading.dat\n\
+         dump frames all custom {avg} loading.lammpstrj id type x y z\n\
+         dump_modify frames sort id\n\
          run {leg}\n\
+         undump frames\n\
          unfix table\n\
          unfix move\n\
          fix move counter move linear 0.0 0.0 {speed}\n\
          fix table all ave/time 1 {avg} {avg} v_zc v_fz file unloading.dat\n\
+         dump frames all custom {avg} unloading.lammpstrj id type x y z\n\
+         dump_modify frames sort id\n\
          run {leg}\n",
         t = spec.run.temperature,
         seed = spec.run.seed,
@@ -100,16 +107,61 @@ pub fn input_file(spec: &MdSpec, assembly: &Assembly) -> String {
     )
 }
 
-/// One row of the table: approach (nm), force on the asperity (nN, positive compressive), branch.
+/// One row of the table: approach (nm), force on the asperity (nN, positive compressive), the
+/// neck's area (nm^2), branch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Row {
+    pub step: u64,
     pub distance: f64,
     pub force: f64,
+    pub area: f64,
     pub loading: bool,
 }
 
+/// The frames of a `dump custom id type x y z` file: per time step, each atom's type and
+/// position.
+pub fn read_frames(text: &str) -> Result<std::collections::HashMap<u64, Vec<(u32, [f64; 3])>>, String> {
+    let mut frames = std::collections::HashMap::new();
+    let mut lines = text.lines().enumerate();
+    while let Some((k, line)) = lines.next() {
+        if line.trim() != "ITEM: TIMESTEP" {
+            return Err(format!("line {}: expected 'ITEM: TIMESTEP', found '{line}'", k + 1));
+        }
+        let mut next = |what: &str| {
+            lines.next().map(|(k, l)| (k, l.trim().to_string())).ok_or_else(|| format!("ends before {what}"))
+        };
+        let (k, step) = next("the time step")?;
+        let step: u64 = step.parse().map_err(|_| format!("line {}: a time step, found '{step}'", k + 1))?;
+        next("ITEM: NUMBER OF ATOMS")?;
+        let (k, count) = next("the number of atoms")?;
+        let count: usize = count.parse().map_err(|_| format!("line {}: a number of atoms, found '{count}'", k + 1))?;
+        for _ in 0..4 {
+            next("the box bounds")?;
+        }
+        let (k, header) = next("ITEM: ATOMS")?;
+        if header != "ITEM: ATOMS id type x y z" {
+            return Err(format!("line {}: expected 'ITEM: ATOMS id type x y z', found '{header}'", k + 1));
+        }
+        let mut atoms = Vec::with_capacity(count);
+        for _ in 0..count {
+            let (k, l) = next("an atom")?;
+            let v: Vec<f64> = l
+                .split_whitespace()
+                .map(str::parse)
+                .collect::<Result<_, _>>()
+                .map_err(|_| format!("line {}: '{l}'", k + 1))?;
+            if v.len() != 5 {
+                return Err(format!("line {}: expected 'id type x y z', found '{l}'", k + 1));
+            }
+            atoms.push((v[1] as u32, [v[2], v[3], v[4]]));
+        }
+        frames.insert(step, atoms);
+    }
+    Ok(frames)
+}
+
 /// The rows of an `ave/time` file of `v_zc v_fz`: the approach from the counter's height
-/// (its start `zc0` where the approach is `start`), in nm and nN.
+/// (its start `zc0` where the approach is `start`), in nm and nN; the area is filled in later.
 pub fn read_leg(text: &str, zc0: f64, start: f64, loading: bool) -> Result<Vec<Row>, String> {
     let mut rows = Vec::new();
     for (k, line) in text.lines().enumerate().filter(|(_, l)| !l.trim_start().starts_with('#') && !l.trim().is_empty())
@@ -122,7 +174,13 @@ pub fn read_leg(text: &str, zc0: f64, start: f64, loading: bool) -> Result<Vec<R
         if v.len() != 3 {
             return Err(format!("line {}: expected 'step zc fz', found '{line}'", k + 1));
         }
-        rows.push(Row { distance: (start + zc0 - v[1]) / 10.0, force: v[2] * EV_PER_ANGSTROM_IN_NN, loading });
+        rows.push(Row {
+            step: v[0] as u64,
+            distance: (start + zc0 - v[1]) / 10.0,
+            force: v[2] * EV_PER_ANGSTROM_IN_NN,
+            area: 0.0,
+            loading,
+        });
     }
     Ok(rows)
 }
@@ -171,12 +229,28 @@ pub fn run(spec: &MdSpec, funcfl: &Funcfl, assembly: &Assembly, out: &Path) -> R
     let start = assembly.start_approach(spec.lattice.constant);
     let zc0 = counter_height(assembly);
     let mut rows = Vec::new();
-    for (name, loading) in [("loading.dat", true), ("unloading.dat", false)] {
-        let path = out.join(name);
-        let text = std::fs::read_to_string(&path).map_err(|e| MdError::Lammps(format!("'{}': {e}", path.display())))?;
-        rows.extend(
-            read_leg(&text, zc0, start, loading).map_err(|m| MdError::Lammps(format!("'{}' {m}", path.display())))?,
-        );
+    let a = spec.lattice.constant;
+    for (leg, loading) in [("loading", true), ("unloading", false)] {
+        let read = |name: String| {
+            let path = out.join(name);
+            std::fs::read_to_string(&path)
+                .map(|t| (path.clone(), t))
+                .map_err(|e| MdError::Lammps(format!("'{}': {e}", path.display())))
+        };
+        let (path, text) = read(format!("{leg}.dat"))?;
+        let mut leg_rows =
+            read_leg(&text, zc0, start, loading).map_err(|m| MdError::Lammps(format!("'{}' {m}", path.display())))?;
+        let (path, text) = read(format!("{leg}.lammpstrj"))?;
+        let frames = read_frames(&text).map_err(|m| MdError::Lammps(format!("'{}' {m}", path.display())))?;
+        for row in &mut leg_rows {
+            let atoms = frames
+                .get(&row.step)
+                .ok_or_else(|| MdError::Lammps(format!("'{}' has no frame at step {}", path.display(), row.step)))?;
+            let mobile: Vec<[f64; 3]> = atoms.iter().filter(|(t, _)| *t == 2).map(|(_, x)| *x).collect();
+            let bottom = atoms.iter().filter(|(t, _)| *t == 3).map(|(_, x)| x[2]).fold(f64::INFINITY, f64::min);
+            row.area = super::neck::neck_area(&mobile, assembly.substrate_top, bottom, assembly.width, a) / 100.0;
+        }
+        rows.extend(leg_rows);
     }
     Ok(rows)
 }
@@ -187,13 +261,15 @@ pub fn counter_height(assembly: &Assembly) -> f64 {
     z.iter().sum::<f64>() / z.len() as f64
 }
 
-/// Writes the table as CSV: `distance,force,branch,max_distance` (nm, nN; the force on the
-/// asperity, positive compressive).
-pub fn write_table(path: &Path, rows: &[Row], max_distance: f64) -> Result<(), MdError> {
-    let mut text = String::from("distance,force,branch,max_distance\n");
+/// Writes the table as CSV: `distance,force,area,branch,max_distance` (nm, nN, nm^2; the force
+/// on the asperity, positive compressive), the columns `stiction calibrate` reads, after the
+/// `# key: value` lines `notes` (its description and provenance).
+pub fn write_table(path: &Path, rows: &[Row], max_distance: f64, notes: &[(&str, String)]) -> Result<(), MdError> {
+    let mut text: String = notes.iter().map(|(k, v)| format!("# {k}: {v}\n")).collect();
+    text.push_str("distance,force,area,branch,max_distance\n");
     for r in rows {
         let branch = if r.loading { "loading" } else { "unloading" };
-        text.push_str(&format!("{:.6},{:.6},{branch},{:.6}\n", r.distance, r.force, max_distance));
+        text.push_str(&format!("{:.6},{:.6},{:.6},{branch},{:.6}\n", r.distance, r.force, r.area, max_distance));
     }
     stiction_core::output::write_atomically(path, text.as_bytes())
         .map_err(|e| MdError::Output { path: path.into(), message: e.to_string() })

@@ -7,12 +7,15 @@
 //!   lattice, and a flat counter-body above the tip;
 //! - [`lammps`]: the LAMMPS data file and input it writes, the run, and the table read back.
 //!
+//! - [`neck`]: the contact area, the neck's smallest cross-section.
+//!
 //! This part runs one approach to `run.max_approach` and back, with a rigid counter-body and the
-//! potential's own adhesion. It does not yet scale the work of adhesion, take several maxima,
-//! measure the neck's area or hand the table to `stiction calibrate`.
+//! potential's own adhesion; `stiction calibrate` reads its table. It does not yet scale the
+//! work of adhesion or measure it, or take several maxima.
 
 pub mod geometry;
 pub mod lammps;
+pub mod neck;
 pub mod spec;
 
 /// Why an MD command stopped: bad input or no LAMMPS to run (exit 2), or a LAMMPS run that
@@ -76,7 +79,21 @@ pub fn run(path: &std::path::Path, out: &std::path::Path) -> Result<MdReport, Md
         });
     }
     let rows = lammps::run(&spec, &funcfl, &assembly, out)?;
-    lammps::write_table(&out.join("force-distance.csv"), &rows, spec.run.max_approach / 10.0)?;
+    let notes = [
+        ("description", format!("nano-asperity experiment of {}", path.display())),
+        (
+            "provenance",
+            format!(
+                "stiction md with LAMMPS, EAM '{}' ({}), {} K, {} m/s, {} ps steps; not fitted to the paper's MD",
+                spec.potential.file.display(),
+                spec.potential.element,
+                spec.run.temperature,
+                spec.run.speed,
+                spec.run.timestep
+            ),
+        ),
+    ];
+    lammps::write_table(&out.join("force-distance.csv"), &rows, spec.run.max_approach / 10.0, &notes)?;
     let max_force = rows.iter().map(|r| r.force).fold(f64::NEG_INFINITY, f64::max);
     let min_force = rows.iter().map(|r| r.force).fold(f64::INFINITY, f64::min);
     Ok(MdReport {
