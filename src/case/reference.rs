@@ -377,8 +377,9 @@ mod tests {
         fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
             for e in std::fs::read_dir(dir).unwrap().flatten() {
                 let p = e.path();
-                if p.is_dir() && p.file_name().is_some_and(|n| n == "fit") {
-                    // fit files (`stiction fit`), checked by crate::fit::spec's tests
+                if p.is_dir() && p.file_name().is_some_and(|n| n == "fit" || n == "md") {
+                    // fit files (`stiction fit`), checked by crate::fit::spec's tests, and MD
+                    // files (`stiction md`), run by tests/md.rs and the manual's test
                     continue;
                 } else if p.is_dir() {
                     walk(&p, out);

@@ -5,8 +5,7 @@
 //!   and checked before anything runs;
 //! - [`geometry`]: the atoms: an fcc substrate with a spherical-cap asperity grown on its
 //!   lattice, and a flat counter-body above the tip;
-//! - [`lammps`]: the LAMMPS data file and input it writes, the run, and the table read back.
-//!
+//! - [`lammps`]: the LAMMPS data file and input it writes, the run, and the table read back;
 //! - [`neck`]: the contact area, the neck's smallest cross-section.
 //!
 //! This part runs one approach to `run.max_approach` and back, with a rigid counter-body and the
