@@ -111,6 +111,16 @@ fn md_files_and_failed_lammps_runs_are_named() {
         assert_eq!(code, Some(2), "{changes:?}: {stderr}");
         assert!(stderr.contains(phrase) && stderr.contains("tiny.toml"), "{changes:?}: {stderr}");
     }
+    // a relative potential path with a space, from an MD file given by a relative path: found
+    std::fs::create_dir_all(dir.join("my potentials")).unwrap();
+    std::fs::copy(POTENTIAL, dir.join("my potentials").join("Au.eam")).unwrap();
+    md_file(&dir, POTENTIAL, &[(POTENTIAL, "my potentials/Au.eam")]);
+    let out = Command::new(env!("CARGO_BIN_EXE_stiction"))
+        .args(["md", "tiny.toml", "--out", "relative-out"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let file = md_file(&dir, POTENTIAL, &[]);
     let (code, _, stderr) =
         stiction(&[file.as_os_str(), "--out".as_ref(), dir.join("out").as_os_str()], Some("/no/such/lmp"));

@@ -65,9 +65,9 @@ pub fn input_file(spec: &MdSpec, assembly: &Assembly) -> String {
          boundary p p f\n\
          read_data atoms.data\n\
          pair_style eam\n\
-         pair_coeff 1 1 {potential}\n\
-         pair_coeff 2 2 {potential}\n\
-         pair_coeff 3 3 {potential}\n\
+         pair_coeff 1 1 \"{potential}\"\n\
+         pair_coeff 2 2 \"{potential}\"\n\
+         pair_coeff 3 3 \"{potential}\"\n\
          neighbor 2.0 bin\n\
          neigh_modify every 1 delay 0 check yes\n\
          group base type 1\n\
@@ -213,6 +213,7 @@ pub fn run(spec: &MdSpec, funcfl: &Funcfl, assembly: &Assembly, out: &Path) -> R
     let status = std::process::Command::new(&lmp)
         .args(["-in", "in.stiction", "-log", "log.lammps", "-screen", "none"])
         .current_dir(out)
+        .stderr(std::process::Stdio::null()) // MPI's abort notice; the log holds LAMMPS's error
         .status()
         .map_err(|e| {
             MdError::LammpsMissing(format!(

@@ -207,7 +207,9 @@ pub fn load(path: &Path) -> Result<(MdSpec, Funcfl), MdError> {
         ));
     }
     let base = path.parent().unwrap_or(Path::new("."));
-    spec.potential.file = base.join(&spec.potential.file);
+    // absolute: LAMMPS runs in the output folder
+    spec.potential.file = std::path::absolute(base.join(&spec.potential.file))
+        .map_err(|e| key("potential.file", format!("'{}': {e}", spec.potential.file.display())))?;
     let funcfl = read_funcfl(&spec.potential.file).map_err(|m| key("potential.file", m))?;
     let z = atomic_number(&spec.potential.element).ok_or_else(|| {
         key("potential.element", format!("'{}' is not an element this reader knows", spec.potential.element))
