@@ -172,11 +172,14 @@ enum Command {
         command: SurfaceCommand,
     },
     /// Run the nano-asperity experiment with LAMMPS (an fcc asperity on a substrate pressed by
-    /// a flat counter-body to a maximum approach and pulled back) and write its force against
-    /// the approach as a table (force-distance.csv: distance in nm, force in nN), beside the
-    /// LAMMPS input, data file and log. Needs `lmp` (Debian: lammps) or STICTION_LAMMPS.
+    /// a flat counter-body to each maximum approach and pulled back), measure the work of
+    /// adhesion across the interface (scaled as the file asks), and write the force and contact
+    /// area against the approach as the table `stiction calibrate` reads (force-distance.csv:
+    /// nm, nN, nm^2), beside the LAMMPS input, data file, log and atom dumps. Needs `lmp`
+    /// (Debian: lammps lammps-data) or STICTION_LAMMPS. The MD file's keys: docs/md.md.
     Md {
-        /// The MD file (TOML; see `stiction::md::spec`).
+        /// The MD file (TOML: [lattice], [substrate], [asperity], [counter], [potential],
+        /// optional [adhesion], [run]).
         file: PathBuf,
         /// Output folder (default: out/md-<file stem>).
         #[arg(long)]
@@ -434,11 +437,31 @@ fn md(file: &std::path::Path, out: Option<PathBuf>) -> ExitCode {
     match stiction::md::run(file, &out) {
         Ok(r) => {
             println!(
-                "{}: {} atoms ({} in the asperity, {} in its base plane); force on the asperity from {:.3} to {:.3} nN; table in {}",
+                "{}: {} atoms ({} in the asperity, {} in its base plane); work of adhesion {:.3} J/m^2 (cross scale {:.4}, (001) flats at 0 K)",
                 file.display(),
                 r.atoms,
                 r.asperity_atoms,
                 r.base_atoms,
+                r.work_of_adhesion,
+                r.cross_scale,
+            );
+            for b in &r.branches {
+                match b.separated_at {
+                    Some(d) => println!(
+                        "unloading from {:.3} nm: the neck broke at {d:.3} nm; {} atoms went with the counter-body",
+                        b.max_distance, b.detached
+                    ),
+                    None if !b.touched => {
+                        println!("unloading from {:.3} nm: no neck at all (no contact on the branch)", b.max_distance)
+                    }
+                    None => println!(
+                        "unloading from {:.3} nm: not separated at {:.3} nm (neck {:.3} nm^2, force {:.3} nN): pull back farther (run.pull_back)",
+                        b.max_distance, b.last.0, b.last.1, b.last.2
+                    ),
+                }
+            }
+            println!(
+                "force on the asperity from {:.3} to {:.3} nN; table in {}",
                 r.min_force,
                 r.max_force,
                 out.join("force-distance.csv").display()
@@ -613,7 +636,7 @@ fn calibrate(table: &std::path::Path, output: &std::path::Path, lo: usize, uo: u
         calibration.description,
         calibration.provenance
     );
-    if let Err(e) = std::fs::write(output, calibration.to_toml(&header)) {
+    if let Err(e) = stiction_core::output::write_atomically(output, calibration.to_toml(&header).as_bytes()) {
         eprintln!("error: cannot write '{}': {e}", output.display());
         return ExitCode::from(1);
     }
@@ -768,6 +791,13 @@ fn plugins_command(dirs: &[PathBuf]) -> ExitCode {
 }
 
 fn main() -> ExitCode {
+    // Rust ignores SIGPIPE, so printing to a closed pipe (`stiction plugins | head`) panics;
+    // the default action ends the program quietly, as other command-line tools do
+    #[cfg(unix)]
+    // SAFETY: sets a signal's action to the default before any thread starts
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let result = match Cli::parse().command {
         Command::Run { input, quiet, overwrite, resume, stop_after } => {
             run_command(input, quiet, overwrite, resume, stop_after)

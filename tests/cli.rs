@@ -127,3 +127,23 @@ fn a_bad_height_map_is_refused_naming_the_file_and_the_fault() {
     assert_eq!(missing.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&missing.stderr).contains("no-such-map.gsf"));
 }
+
+/// A reader that stops early (`stiction plugins | head -1`) ends the program by SIGPIPE, the
+/// default for a command-line tool, not by a panic printing to a closed pipe.
+#[cfg(unix)]
+#[test]
+fn a_closed_pipe_ends_the_program_without_a_panic() {
+    use std::os::unix::process::ExitStatusExt;
+    let exe = env!("CARGO_BIN_EXE_stiction");
+    let mut child = Command::new(exe)
+        .arg("plugins")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take()); // the reader is gone before the first line
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.signal(), Some(13), "ended by SIGPIPE: {:?} {stderr}", out.status);
+}

@@ -50,7 +50,7 @@ impl Assembly {
 
 /// The fcc sites of the cells (i, j, k), i and j in 0..n, k in 0..layers: cell corner plus
 /// the basis (0,0,0), (1/2,1/2,0), (1/2,0,1/2), (0,1/2,1/2).
-fn sites(a: f64, n: usize, layers: usize) -> impl Iterator<Item = [f64; 3]> {
+pub(crate) fn sites(a: f64, n: usize, layers: usize) -> impl Iterator<Item = [f64; 3]> {
     const BASIS: [[f64; 3]; 4] = [[0.0, 0.0, 0.0], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]];
     (0..layers).flat_map(move |k| {
         (0..n).flat_map(move |j| {

@@ -5,13 +5,17 @@
 //!   and checked before anything runs;
 //! - [`geometry`]: the atoms: an fcc substrate with a spherical-cap asperity grown on its
 //!   lattice, and a flat counter-body above the tip;
+//! - [`eam`]: the potential, rewritten with the interaction across the interface scaled;
+//! - [`adhesion`]: the work of adhesion that interaction gives, measured on flat slabs, and the
+//!   scale that gives a target;
 //! - [`lammps`]: the LAMMPS data file and input it writes, the run, and the table read back;
 //! - [`neck`]: the contact area, the neck's smallest cross-section.
 //!
-//! This part runs one approach to `run.max_approach` and back, with a rigid counter-body and the
-//! potential's own adhesion; `stiction calibrate` reads its table. It does not yet scale the
-//! work of adhesion or measure it, or take several maxima.
+//! The counter-body is rigid and the lattice fcc; `stiction calibrate` reads the table, whose
+//! `# work_of_adhesion` line is the measured one.
 
+pub mod adhesion;
+pub mod eam;
 pub mod geometry;
 pub mod lammps;
 pub mod neck;
@@ -27,6 +31,9 @@ pub enum MdError {
     File { path: std::path::PathBuf, message: String },
     #[error("{0}")]
     LammpsMissing(String),
+    /// A work of adhesion the cross scale cannot reach (the caller names the key).
+    #[error("{0}")]
+    Target(String),
     #[error("{0}")]
     Lammps(String),
     #[error("cannot write '{}': {message}", path.display())]
@@ -36,7 +43,7 @@ pub enum MdError {
 impl MdError {
     pub fn exit_code(&self) -> u8 {
         match self {
-            MdError::Key { .. } | MdError::File { .. } | MdError::LammpsMissing(_) => 2,
+            MdError::Key { .. } | MdError::File { .. } | MdError::LammpsMissing(_) | MdError::Target(_) => 2,
             MdError::Lammps(_) | MdError::Output { .. } => 1,
         }
     }
@@ -50,6 +57,12 @@ pub struct MdReport {
     pub base_atoms: usize,
     /// The table's rows (nm, nN).
     pub rows: Vec<lammps::Row>,
+    /// How each unloading branch ended, in the order of the maxima.
+    pub branches: Vec<lammps::BranchEnd>,
+    /// The cross scale of the interaction across the interface, and the work of adhesion
+    /// measured with it (J/m^2).
+    pub cross_scale: f64,
+    pub work_of_adhesion: f64,
     /// The largest compressive and the most tensile force on the asperity (nN).
     pub max_force: f64,
     pub min_force: f64,
@@ -77,13 +90,38 @@ pub fn run(path: &std::path::Path, out: &std::path::Path) -> Result<MdReport, Md
             ),
         });
     }
-    let rows = lammps::run(&spec, &funcfl, &assembly, out)?;
+    let tables = eam::read_funcfl_tables(&spec.potential.file).map_err(|message| MdError::Key {
+        path: path.into(),
+        key: "potential.file".into(),
+        message,
+    })?;
+    lammps::prepare_folder(out)?;
+    let a = spec.lattice.constant;
+    let element = &spec.potential.element;
+    let dir = out.join("adhesion");
+    let (cross_scale, work_of_adhesion) = match spec.adhesion.work_of_adhesion {
+        Some(target) => {
+            adhesion::scale_for(&tables, element, a, target, spec.adhesion.tolerance, &dir).map_err(|e| match e {
+                MdError::Target(message) => {
+                    MdError::Key { path: path.into(), key: "adhesion.work_of_adhesion".into(), message }
+                }
+                e => e,
+            })?
+        }
+        None => {
+            let s = spec.adhesion.cross_scale.unwrap_or(1.0);
+            (s, adhesion::measure(&tables, element, a, s, &dir)?)
+        }
+    };
+    let names = eam::element_names(element);
+    let potential = eam::fs_file(&tables, [&names[0], &names[1]], cross_scale);
+    let (rows, branches) = lammps::run(&spec, &funcfl, &potential, &assembly, out)?;
     let notes = [
         ("description", format!("nano-asperity experiment of {}", path.display())),
         (
             "provenance",
             format!(
-                "stiction md with LAMMPS, EAM '{}' ({}), {} K, {} m/s, {} ps steps; not fitted to the paper's MD",
+                "stiction md with LAMMPS, EAM '{}' ({}), cross scale {cross_scale:.4}, {} K, {} m/s, {} ps steps; not fitted to the paper's MD",
                 spec.potential.file.display(),
                 spec.potential.element,
                 spec.run.temperature,
@@ -91,8 +129,9 @@ pub fn run(path: &std::path::Path, out: &std::path::Path) -> Result<MdReport, Md
                 spec.run.timestep
             ),
         ),
+        ("work_of_adhesion", format!("{work_of_adhesion:.6}")),
     ];
-    lammps::write_table(&out.join("force-distance.csv"), &rows, spec.run.max_approach / 10.0, &notes)?;
+    lammps::write_table(&out.join("force-distance.csv"), &rows, &notes)?;
     let max_force = rows.iter().map(|r| r.force).fold(f64::NEG_INFINITY, f64::max);
     let min_force = rows.iter().map(|r| r.force).fold(f64::INFINITY, f64::min);
     Ok(MdReport {
@@ -100,6 +139,9 @@ pub fn run(path: &std::path::Path, out: &std::path::Path) -> Result<MdReport, Md
         asperity_atoms: assembly.asperity_atoms,
         base_atoms: assembly.base_atoms,
         rows,
+        branches,
+        cross_scale,
+        work_of_adhesion,
         max_force,
         min_force,
     })

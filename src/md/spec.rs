@@ -15,12 +15,18 @@
 //! gap = 4.0                  # between the tip atom and the counter's lowest plane, at the start
 //! [potential]
 //! file = "/usr/share/lammps/potentials/Au_u3.eam"
-//! element = "Au"             # pair_style eam (DYNAMO funcfl: one element)
+//! element = "Au"             # DYNAMO funcfl EAM: one element
+//! [adhesion]                 # optional: the interaction across the interface
+//! work_of_adhesion = 1.0     # J/m^2, reached by a cross scale; or cross_scale = 0.45
+//! tolerance = 0.01           # relative, on work_of_adhesion
 //! [run]
 //! temperature = 300.0
 //! timestep = 0.002           # ps
 //! speed = 7.0                # m/s, the counter's
-//! max_approach = 2.0         # Angstrom
+//! max_approach = [1.0, 2.0]  # Angstrom: an unloading branch from each
+//! pull_back = -12.0          # Angstrom, where each unloading ends (default: the start)
+//! average_steps = 50         # steps per row of the table, and per dump frame
+//! processes = 1              # MPI processes for LAMMPS
 //! seed = 1
 //! ```
 
@@ -37,6 +43,49 @@ pub struct MdSpec {
     pub counter: CounterSpec,
     pub potential: PotentialSpec,
     pub run: RunSpec,
+    #[serde(default)]
+    pub adhesion: AdhesionSpec,
+}
+
+/// The interaction across the interface (asperity and counter-body): the potential's own
+/// (neither key), scaled by `cross_scale`, or scaled to give `work_of_adhesion`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdhesionSpec {
+    /// The factor on the cross terms of the potential (pair energy and density).
+    pub cross_scale: Option<f64>,
+    /// The (001) flat-on-flat work of adhesion to reach (J/m^2), by the cross scale.
+    pub work_of_adhesion: Option<f64>,
+    /// The relative tolerance on `work_of_adhesion`.
+    #[serde(default = "one_percent")]
+    pub tolerance: f64,
+}
+
+fn one_percent() -> f64 {
+    0.01
+}
+
+impl Default for AdhesionSpec {
+    fn default() -> Self {
+        AdhesionSpec { cross_scale: None, work_of_adhesion: None, tolerance: one_percent() }
+    }
+}
+
+/// One number or a list of them.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum OneOrMany {
+    One(f64),
+    Many(Vec<f64>),
+}
+
+impl OneOrMany {
+    pub fn values(&self) -> Vec<f64> {
+        match self {
+            OneOrMany::One(v) => vec![*v],
+            OneOrMany::Many(v) => v.clone(),
+        }
+    }
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -91,14 +140,33 @@ pub struct RunSpec {
     pub timestep: f64,
     /// The counter-body's speed (m/s).
     pub speed: f64,
-    /// The approach at which loading turns to unloading (Angstrom).
-    pub max_approach: f64,
+    /// The approaches at which unloading branches are taken (Angstrom): one, or a list in
+    /// increasing order. The loading runs on to the largest; each unloading starts from a state
+    /// saved on the way.
+    pub max_approach: OneOrMany,
+    /// The approach each unloading runs back to (Angstrom); the start's, a / 2 - gap, when
+    /// not given.
+    pub pull_back: Option<f64>,
+    /// The time steps averaged into one row of the table; the atoms are dumped as often.
+    #[serde(default = "fifty")]
+    pub average_steps: usize,
+    /// The MPI processes LAMMPS runs on (`mpirun -np`); 1 runs `lmp` alone.
+    #[serde(default = "one_process")]
+    pub processes: usize,
     /// The seed of the initial velocities and the thermostat's noise.
     #[serde(default = "one")]
     pub seed: u64,
 }
 
 fn one() -> u64 {
+    1
+}
+
+fn fifty() -> usize {
+    50
+}
+
+fn one_process() -> usize {
     1
 }
 
@@ -115,24 +183,15 @@ pub struct Funcfl {
     pub structure: String,
 }
 
-/// Reads the second line of a DYNAMO funcfl file: atomic number, mass, lattice constant,
-/// structure.
+/// What a DYNAMO funcfl file says of its element (its second line); the file's tables are
+/// read whole, so one cut short is an error here.
 pub fn read_funcfl(path: &Path) -> Result<Funcfl, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read '{}': {e}", path.display()))?;
-    let line =
-        text.lines().nth(1).ok_or_else(|| format!("'{}' has no second line (a funcfl EAM file)", path.display()))?;
-    let v: Vec<&str> = line.split_whitespace().collect();
-    let bad = || {
-        format!("'{}' line 2: expected 'atomic-number mass lattice-constant structure', found '{line}'", path.display())
-    };
-    if v.len() < 4 {
-        return Err(bad());
-    }
+    let t = super::eam::read_funcfl_tables(path)?;
     Ok(Funcfl {
-        atomic_number: v[0].parse().map_err(|_| bad())?,
-        mass: v[1].parse().map_err(|_| bad())?,
-        lattice_constant: v[2].parse().map_err(|_| bad())?,
-        structure: v[3].to_string(),
+        atomic_number: t.atomic_number,
+        mass: t.mass,
+        lattice_constant: t.lattice_constant,
+        structure: t.structure,
     })
 }
 
@@ -171,12 +230,58 @@ pub fn load(path: &Path) -> Result<(MdSpec, Funcfl), MdError> {
         ("run.temperature", spec.run.temperature),
         ("run.timestep", spec.run.timestep),
         ("run.speed", spec.run.speed),
-        ("run.max_approach", spec.run.max_approach),
     ];
     for (k, v) in positive {
         if !(v.is_finite() && v > 0.0) {
             return Err(key(k, format!("must be a finite number > 0, got {v}")));
         }
+    }
+    let maxima = spec.run.max_approach.values();
+    if maxima.is_empty() || maxima.iter().any(|m| !m.is_finite()) || maxima.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(key(
+            "run.max_approach",
+            format!("expected a finite number or a list of them in increasing order, got {maxima:?}"),
+        ));
+    }
+    let start = spec.lattice.constant / 2.0 - spec.counter.gap;
+    if maxima[0] <= start {
+        return Err(key(
+            "run.max_approach",
+            format!("{} Angstrom is not past the start's approach, a / 2 - counter.gap = {start} Angstrom", maxima[0]),
+        ));
+    }
+    if let Some(p) = spec.run.pull_back
+        && !(p.is_finite() && p < maxima[0])
+    {
+        return Err(key(
+            "run.pull_back",
+            format!("must be a finite approach below the smallest max_approach ({} Angstrom), got {p}", maxima[0]),
+        ));
+    }
+    match (spec.adhesion.cross_scale, spec.adhesion.work_of_adhesion) {
+        (Some(_), Some(_)) => {
+            return Err(key(
+                "adhesion.work_of_adhesion",
+                "give cross_scale or work_of_adhesion, not both (the scale is found from the work)".into(),
+            ));
+        }
+        (Some(s), None) if !(s.is_finite() && s >= 0.0) => {
+            return Err(key("adhesion.cross_scale", format!("must be a finite number >= 0, got {s}")));
+        }
+        (None, Some(w)) if !(w.is_finite() && w > 0.0) => {
+            return Err(key("adhesion.work_of_adhesion", format!("must be a finite number > 0 (J/m^2), got {w}")));
+        }
+        _ => {}
+    }
+    let t = spec.adhesion.tolerance;
+    if !(t.is_finite() && t > 0.0 && t < 0.5) {
+        return Err(key("adhesion.tolerance", format!("must lie in (0, 0.5), got {t}")));
+    }
+    if spec.run.average_steps == 0 {
+        return Err(key("run.average_steps", "must be at least 1".into()));
+    }
+    if spec.run.processes == 0 {
+        return Err(key("run.processes", "must be at least 1".into()));
     }
     if spec.substrate.width_cells < 2 {
         return Err(key("substrate.width_cells", format!("must be at least 2, got {}", spec.substrate.width_cells)));
