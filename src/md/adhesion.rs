@@ -121,17 +121,13 @@ pub fn scale_for(
         target: f64,
         dir: &'a Path,
         failure: RefCell<Option<MdError>>,
-        measured: RefCell<Vec<(f64, f64)>>,
     }
     impl CostFunction for Gap<'_> {
         type Param = f64;
         type Output = f64;
         fn cost(&self, s: &f64) -> Result<f64, argmin::core::Error> {
             match measure(self.tables, self.element, self.a, *s, self.dir) {
-                Ok(w) => {
-                    self.measured.borrow_mut().push((*s, w));
-                    Ok(w - self.target)
-                }
+                Ok(w) => Ok(w - self.target),
                 Err(e) => {
                     let message = e.to_string();
                     *self.failure.borrow_mut() = Some(e);
@@ -149,8 +145,12 @@ pub fn scale_for(
             self.0.cost(s)
         }
     }
-    let gap = Gap { tables, element, a, target, dir, failure: RefCell::new(None), measured: RefCell::new(Vec::new()) };
-    let at_largest = gap.cost(&LARGEST_SCALE).map_err(|_| gap.failure.borrow_mut().take().unwrap())? + target;
+    let gap = Gap { tables, element, a, target, dir, failure: RefCell::new(None) };
+    let failure = |gap: &Gap| gap.failure.borrow_mut().take();
+    let at_largest = match gap.cost(&LARGEST_SCALE) {
+        Ok(v) => v + target,
+        Err(e) => return Err(failure(&gap).unwrap_or_else(|| MdError::Lammps(e.to_string()))),
+    };
     if at_largest < target {
         return Err(MdError::Target(format!(
             "a work of adhesion of {target} J/m^2 is beyond this potential's reach: the cross scale {LARGEST_SCALE} gives {at_largest:.3} J/m^2"
@@ -159,7 +159,7 @@ pub fn scale_for(
     // tolerance on the scale: w is about linear in it, so a relative tolerance carries over
     let solver = BrentRoot::new(0.0, LARGEST_SCALE, 0.25 * tolerance);
     let result = Executor::new(Borrowed(&gap), solver).configure(|state| state.param(1.0).max_iters(40)).run();
-    if let Some(e) = gap.failure.borrow_mut().take() {
+    if let Some(e) = failure(&gap) {
         return Err(e);
     }
     let result = result.map_err(|e| MdError::Lammps(format!("the cross scale's search failed: {e}")))?;
