@@ -16,8 +16,9 @@
 //! It does not know what the table is fitted to, or how the work of adhesion was chosen.
 
 use super::MdError;
+use super::eam::FuncflTables;
 use super::geometry::{Assembly, Part};
-use super::spec::{Funcfl, MdSpec};
+use super::spec::MdSpec;
 use std::path::{Path, PathBuf};
 
 /// eV / Angstrom in nN.
@@ -25,7 +26,7 @@ pub const EV_PER_ANGSTROM_IN_NN: f64 = 1.602_176_634;
 
 /// The data file's text; the box reaches 10 Angstrom over the counter's top once it has been
 /// lifted by `lift` above its start (the farthest an unloading takes it).
-pub fn data_file(assembly: &Assembly, funcfl: &Funcfl, lift: f64) -> String {
+pub fn data_file(assembly: &Assembly, funcfl: &FuncflTables, lift: f64) -> String {
     let top = assembly.atoms.iter().map(|(x, _)| x[2]).fold(f64::NEG_INFINITY, f64::max) + lift.max(0.0);
     let mut text = format!(
         "stiction md: {} atoms\n\n{} atoms\n3 atom types\n\n0 {w} xlo xhi\n0 {w} ylo yhi\n-10 {} zlo zhi\n\nMasses\n\n1 {m}\n2 {m}\n3 {m}\n\nAtoms # atomic\n\n",
@@ -308,7 +309,7 @@ pub fn run_lammps(dir: &Path, input: &str, log: &str, processes: usize) -> Resul
 /// error naming its log and last error line.
 pub fn run(
     spec: &MdSpec,
-    funcfl: &Funcfl,
+    funcfl: &FuncflTables,
     potential: &str,
     assembly: &Assembly,
     out: &Path,

@@ -71,7 +71,7 @@ pub struct MdReport {
 /// Runs the experiment of the MD file at `path` into `out`: `atoms.data`, `in.stiction`,
 /// `log.lammps`, `loading.dat`, `unloading.dat` and `force-distance.csv`.
 pub fn run(path: &std::path::Path, out: &std::path::Path) -> Result<MdReport, MdError> {
-    let (spec, funcfl) = spec::load(path)?;
+    let (spec, tables) = spec::load(path)?;
     let assembly = geometry::build(
         spec.lattice.constant,
         spec.substrate.width_cells,
@@ -90,11 +90,6 @@ pub fn run(path: &std::path::Path, out: &std::path::Path) -> Result<MdReport, Md
             ),
         });
     }
-    let tables = eam::read_funcfl_tables(&spec.potential.file).map_err(|message| MdError::Key {
-        path: path.into(),
-        key: "potential.file".into(),
-        message,
-    })?;
     lammps::prepare_folder(out)?;
     let a = spec.lattice.constant;
     let element = &spec.potential.element;
@@ -115,7 +110,7 @@ pub fn run(path: &std::path::Path, out: &std::path::Path) -> Result<MdReport, Md
     };
     let names = eam::element_names(element);
     let potential = eam::fs_file(&tables, [&names[0], &names[1]], cross_scale);
-    let (rows, branches) = lammps::run(&spec, &funcfl, &potential, &assembly, out)?;
+    let (rows, branches) = lammps::run(&spec, &tables, &potential, &assembly, out)?;
     let notes = [
         ("description", format!("nano-asperity experiment of {}", path.display())),
         (

@@ -31,6 +31,7 @@
 //! ```
 
 use super::MdError;
+use super::eam::{FuncflTables, read_funcfl_tables};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -174,27 +175,6 @@ fn one_process() -> usize {
 /// that moves it farther jolts the atoms it touches.
 pub const MAX_STEP_MOTION: f64 = 1e-3;
 
-/// What a funcfl potential file says of its element.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Funcfl {
-    pub atomic_number: u32,
-    pub mass: f64,
-    pub lattice_constant: f64,
-    pub structure: String,
-}
-
-/// What a DYNAMO funcfl file says of its element (its second line); the file's tables are
-/// read whole, so one cut short is an error here.
-pub fn read_funcfl(path: &Path) -> Result<Funcfl, String> {
-    let t = super::eam::read_funcfl_tables(path)?;
-    Ok(Funcfl {
-        atomic_number: t.atomic_number,
-        mass: t.mass,
-        lattice_constant: t.lattice_constant,
-        structure: t.structure,
-    })
-}
-
 /// The atomic numbers of the elements a funcfl file may hold (the common EAM metals).
 pub fn atomic_number(symbol: &str) -> Option<u32> {
     let table = [
@@ -215,7 +195,7 @@ pub fn atomic_number(symbol: &str) -> Option<u32> {
 
 /// Reads and checks the MD file: every number in range, the potential's element and lattice
 /// the file's, a time step the speed allows.
-pub fn load(path: &Path) -> Result<(MdSpec, Funcfl), MdError> {
+pub fn load(path: &Path) -> Result<(MdSpec, FuncflTables), MdError> {
     let file = |message: String| MdError::File { path: path.into(), message };
     let text = std::fs::read_to_string(path).map_err(|e| file(format!("cannot read it: {e}")))?;
     let mut spec: MdSpec = toml::from_str(&text).map_err(|e| file(e.to_string()))?;
@@ -236,53 +216,8 @@ pub fn load(path: &Path) -> Result<(MdSpec, Funcfl), MdError> {
             return Err(key(k, format!("must be a finite number > 0, got {v}")));
         }
     }
-    let maxima = spec.run.max_approach.values();
-    if maxima.is_empty() || maxima.iter().any(|m| !m.is_finite()) || maxima.windows(2).any(|w| w[1] <= w[0]) {
-        return Err(key(
-            "run.max_approach",
-            format!("expected a finite number or a list of them in increasing order, got {maxima:?}"),
-        ));
-    }
-    let start = spec.lattice.constant / 2.0 - spec.counter.gap;
-    if maxima[0] <= start {
-        return Err(key(
-            "run.max_approach",
-            format!("{} Angstrom is not past the start's approach, a / 2 - counter.gap = {start} Angstrom", maxima[0]),
-        ));
-    }
-    if let Some(p) = spec.run.pull_back
-        && !(p.is_finite() && p < maxima[0])
-    {
-        return Err(key(
-            "run.pull_back",
-            format!("must be a finite approach below the smallest max_approach ({} Angstrom), got {p}", maxima[0]),
-        ));
-    }
-    match (spec.adhesion.cross_scale, spec.adhesion.work_of_adhesion) {
-        (Some(_), Some(_)) => {
-            return Err(key(
-                "adhesion.work_of_adhesion",
-                "give cross_scale or work_of_adhesion, not both (the scale is found from the work)".into(),
-            ));
-        }
-        (Some(s), None) if !(s.is_finite() && s >= 0.0) => {
-            return Err(key("adhesion.cross_scale", format!("must be a finite number >= 0, got {s}")));
-        }
-        (None, Some(w)) if !(w.is_finite() && w > 0.0) => {
-            return Err(key("adhesion.work_of_adhesion", format!("must be a finite number > 0 (J/m^2), got {w}")));
-        }
-        _ => {}
-    }
-    let t = spec.adhesion.tolerance;
-    if !(t.is_finite() && t > 0.0 && t < 0.5) {
-        return Err(key("adhesion.tolerance", format!("must lie in (0, 0.5), got {t}")));
-    }
-    if spec.run.average_steps == 0 {
-        return Err(key("run.average_steps", "must be at least 1".into()));
-    }
-    if spec.run.processes == 0 {
-        return Err(key("run.processes", "must be at least 1".into()));
-    }
+    check_path(&spec, &key)?;
+    check_adhesion(&spec.adhesion, &key)?;
     if spec.substrate.width_cells < 2 {
         return Err(key("substrate.width_cells", format!("must be at least 2, got {}", spec.substrate.width_cells)));
     }
@@ -315,7 +250,7 @@ pub fn load(path: &Path) -> Result<(MdSpec, Funcfl), MdError> {
     // absolute: LAMMPS runs in the output folder
     spec.potential.file = std::path::absolute(base.join(&spec.potential.file))
         .map_err(|e| key("potential.file", format!("'{}': {e}", spec.potential.file.display())))?;
-    let funcfl = read_funcfl(&spec.potential.file).map_err(|m| key("potential.file", m))?;
+    let funcfl = read_funcfl_tables(&spec.potential.file).map_err(|m| key("potential.file", m))?;
     let z = atomic_number(&spec.potential.element).ok_or_else(|| {
         key("potential.element", format!("'{}' is not an element this reader knows", spec.potential.element))
     })?;
@@ -343,4 +278,62 @@ pub fn load(path: &Path) -> Result<(MdSpec, Funcfl), MdError> {
         ));
     }
     Ok((spec, funcfl))
+}
+
+/// The run's path: maxima in increasing order past the start, a pull-back below them, at
+/// least one step per row and one process.
+fn check_path(spec: &MdSpec, key: &dyn Fn(&str, String) -> MdError) -> Result<(), MdError> {
+    let maxima = spec.run.max_approach.values();
+    if maxima.is_empty() || maxima.iter().any(|m| !m.is_finite()) || maxima.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(key(
+            "run.max_approach",
+            format!("expected a finite number or a list of them in increasing order, got {maxima:?}"),
+        ));
+    }
+    let start = spec.lattice.constant / 2.0 - spec.counter.gap;
+    if maxima[0] <= start {
+        return Err(key(
+            "run.max_approach",
+            format!("{} Angstrom is not past the start's approach, a / 2 - counter.gap = {start} Angstrom", maxima[0]),
+        ));
+    }
+    if let Some(p) = spec.run.pull_back
+        && !(p.is_finite() && p < maxima[0])
+    {
+        return Err(key(
+            "run.pull_back",
+            format!("must be a finite approach below the smallest max_approach ({} Angstrom), got {p}", maxima[0]),
+        ));
+    }
+    if spec.run.average_steps == 0 {
+        return Err(key("run.average_steps", "must be at least 1".into()));
+    }
+    if spec.run.processes == 0 {
+        return Err(key("run.processes", "must be at least 1".into()));
+    }
+    Ok(())
+}
+
+/// The interaction across the interface: one of the scale and the target, each in range.
+fn check_adhesion(adhesion: &AdhesionSpec, key: &dyn Fn(&str, String) -> MdError) -> Result<(), MdError> {
+    match (adhesion.cross_scale, adhesion.work_of_adhesion) {
+        (Some(_), Some(_)) => {
+            return Err(key(
+                "adhesion.work_of_adhesion",
+                "give cross_scale or work_of_adhesion, not both (the scale is found from the work)".into(),
+            ));
+        }
+        (Some(s), None) if !(s.is_finite() && s >= 0.0) => {
+            return Err(key("adhesion.cross_scale", format!("must be a finite number >= 0, got {s}")));
+        }
+        (None, Some(w)) if !(w.is_finite() && w > 0.0) => {
+            return Err(key("adhesion.work_of_adhesion", format!("must be a finite number > 0 (J/m^2), got {w}")));
+        }
+        _ => {}
+    }
+    let t = adhesion.tolerance;
+    if !(t.is_finite() && t > 0.0 && t < 0.5) {
+        return Err(key("adhesion.tolerance", format!("must lie in (0, 0.5), got {t}")));
+    }
+    Ok(())
 }
