@@ -159,6 +159,48 @@ impl SparsityPattern {
     pub fn write_matrix_market(&self, values: &[f64], path: &std::path::Path) -> std::io::Result<()> {
         sprs::io::write_matrix_market(path, self.as_sprs(values))
     }
+
+    /// Writes a symmetric matrix's lower triangle as a `symmetric` Matrix Market file, the form
+    /// other sparse solvers (CHOLMOD, MUMPS) read; atomically (a `.part` file renamed into
+    /// place). The upper triangle's values are not written: the linear solvers read the lower.
+    /// (Written here because sprs's symmetric writer stores the upper triangle, where the
+    /// format's specification has the lower.)
+    pub fn write_matrix_market_symmetric(&self, values: &[f64], path: &std::path::Path) -> std::io::Result<()> {
+        use std::io::Write;
+        assert_eq!(values.len(), self.nnz(), "{} values for a pattern of {} entries", values.len(), self.nnz());
+        let mut part = path.as_os_str().to_owned();
+        part.push(".part");
+        let part = std::path::PathBuf::from(part);
+        let lower = |j: usize| (self.col_ptr[j]..self.col_ptr[j + 1]).filter(move |&k| self.row_idx[k] >= j);
+        let entries: usize = (0..self.n).map(|j| lower(j).count()).sum();
+        let write = || -> std::io::Result<()> {
+            let mut out = std::io::BufWriter::new(std::fs::File::create(&part)?);
+            writeln!(out, "%%MatrixMarket matrix coordinate real symmetric")?;
+            writeln!(out, "{} {} {entries}", self.n, self.n)?;
+            for j in 0..self.n {
+                for k in lower(j) {
+                    // Rust's shortest representation that reads back to the same f64
+                    writeln!(out, "{} {} {:e}", self.row_idx[k] + 1, j + 1, values[k])?;
+                }
+            }
+            out.into_inner().map_err(|e| e.into_error())?.sync_all()
+        };
+        write().and_then(|()| std::fs::rename(&part, path)).inspect_err(|_| {
+            let _ = std::fs::remove_file(&part);
+        })
+    }
+
+    /// Reads a square Matrix Market file (a `symmetric` one gives both triangles) as a pattern
+    /// holding both triangles and its values, as a model assembles them.
+    pub fn read_matrix_market(path: &std::path::Path) -> Result<(Self, Vec<f64>), sprs::io::IoError> {
+        let triplets: sprs::TriMat<f64> = sprs::io::read_matrix_market(path)?;
+        if triplets.rows() != triplets.cols() {
+            return Err(sprs::io::IoError::BadMatrixMarketFile);
+        }
+        // the compressed-column conversion sorts the rows of each column and sums duplicates
+        let (col_ptr, row_idx, values) = triplets.to_csc::<usize>().into_raw_storage();
+        Ok((Self { n: col_ptr.len() - 1, col_ptr: col_ptr.into(), row_idx: row_idx.into() }, values))
+    }
 }
 
 #[cfg(test)]
@@ -210,5 +252,34 @@ mod tests {
         let mut y = vec![0.0; 3];
         p.multiply(&values, &[1.0, 10.0, 100.0], &mut y);
         assert_eq!(y, vec![1.0 + 30.0, 2.0 + 40.0 + 600.0, 50.0 + 700.0]);
+    }
+
+    #[test]
+    fn symmetric_matrix_market_holds_the_lower_triangle_and_reads_back_whole() {
+        let cells: Vec<Vec<usize>> = vec![vec![0, 1], vec![1, 2]];
+        let p = SparsityPattern::from_cells(3, 3, 1, cells.iter().map(|c| c.as_slice()), |n, _| Some(n));
+        // [[4, 1, .], [1, 5, 2], [., 2, 6]] column by column
+        let values = vec![4.0, 1.0, 1.0, 5.0, 2.0, 2.0, 6.0];
+        let path = std::env::temp_dir().join(format!("stiction-symmetric-{}.mtx", std::process::id()));
+        p.write_matrix_market_symmetric(&values, &path).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let (back, back_values) = SparsityPattern::read_matrix_market(&path).unwrap();
+        let _ = std::fs::remove_file(&path);
+        assert!(text.starts_with("%%MatrixMarket matrix coordinate real symmetric"), "{text}");
+        let entries: Vec<(usize, usize)> = text
+            .lines()
+            .filter(|l| !l.starts_with('%'))
+            .skip(1)
+            .map(|l| {
+                let w: Vec<usize> = l.split_whitespace().take(2).map(|w| w.parse().unwrap()).collect();
+                (w[0], w[1])
+            })
+            .collect();
+        // 1-based (row, column) of the lower triangle, each once
+        assert_eq!(entries, vec![(1, 1), (2, 1), (2, 2), (3, 2), (3, 3)]);
+        assert_eq!(back.n, 3);
+        assert_eq!(back.col_ptr[..], p.col_ptr[..]);
+        assert_eq!(back.row_idx[..], p.row_idx[..]);
+        assert_eq!(back_values, values);
     }
 }
