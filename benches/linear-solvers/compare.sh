@@ -8,8 +8,9 @@
 # Debian's packages when missing and builds the two small C drivers beside this script. Each
 # solver reads the file, analyses once, factors REPEATS times (the best time counts) and solves
 # A x = b with b = A 1; the table gives times, factor entries, the relative residual and the
-# peak memory of the process. Threads: rayon's for faer, OpenBLAS's for CHOLMOD and MUMPS
-# (sequential MUMPS, whose parallelism is the BLAS's). The last line reads
+# peak memory of the process. Threads: rayon's for faer (which factors a factor below 50M
+# entries on one of them, as a run does), OpenBLAS's for CHOLMOD and MUMPS (sequential MUMPS,
+# whose parallelism is the BLAS's); CHOLMOD and MUMPS also run on one thread. The last line reads
 # `faer/best factorization time ratio R`: Stiction's default factorization (METIS nested
 # dissection, single-precision factor refined to double) against the fastest of all the others.
 set -euo pipefail
@@ -63,31 +64,35 @@ if [ -z "$matrix" ]; then
   matrix="$out/tangent.mtx"
 fi
 
-export RAYON_NUM_THREADS="$threads" OPENBLAS_NUM_THREADS="$threads" OMP_NUM_THREADS="$threads"
 results="$out/results.jsonl"
 : > "$results"
-measure() { # label, command...
-  local label=$1; shift
+measure() { # label, threads, command...
+  local label=$1 n=$2; shift 2
   echo "  $label" >&2
-  "$@" | sed "s/^{/{\"label\": \"$label\", /" >> "$results" || { echo "$label failed" >&2; exit 1; }
+  RAYON_NUM_THREADS="$n" OPENBLAS_NUM_THREADS="$n" OMP_NUM_THREADS="$n" "$@" \
+    | sed "s/^{/{\"label\": \"$label\", \"threads\": $n, /" >> "$results" || { echo "$label failed" >&2; exit 1; }
 }
 echo "factoring $matrix on $threads threads, best of $repeats:" >&2
-measure "faer, default (nd, single)" "$faer" factor "$matrix" nd single "$repeats"
-measure "faer, nd, double" "$faer" factor "$matrix" nd double "$repeats"
-measure "faer, amd, double" "$faer" factor "$matrix" amd double "$repeats"
-measure "CHOLMOD, its own choice" "$out/cholmod_driver" "$matrix" default "$repeats"
-measure "CHOLMOD, amd" "$out/cholmod_driver" "$matrix" amd "$repeats"
-measure "MUMPS, its own choice, double" "$out/mumps_driver_d" "$matrix" auto "$repeats"
-measure "MUMPS, pord, double" "$out/mumps_driver_d" "$matrix" pord "$repeats"
-measure "MUMPS, its own choice, single" "$out/mumps_driver_s" "$matrix" auto "$repeats"
+t=$threads
+measure "faer, default (nd, single)" "$t" "$faer" factor "$matrix" nd single "$repeats"
+measure "faer, nd, double" "$t" "$faer" factor "$matrix" nd double "$repeats"
+measure "faer, amd, double" "$t" "$faer" factor "$matrix" amd double "$repeats"
+measure "CHOLMOD, its own choice" "$t" "$out/cholmod_driver" "$matrix" default "$repeats"
+measure "CHOLMOD, its own choice" 1 "$out/cholmod_driver" "$matrix" default "$repeats"
+measure "CHOLMOD, amd" "$t" "$out/cholmod_driver" "$matrix" amd "$repeats"
+measure "MUMPS, its own choice, double" "$t" "$out/mumps_driver_d" "$matrix" auto "$repeats"
+measure "MUMPS, pord, double" "$t" "$out/mumps_driver_d" "$matrix" pord "$repeats"
+measure "MUMPS, its own choice, single" "$t" "$out/mumps_driver_s" "$matrix" auto "$repeats"
+measure "MUMPS, its own choice, single" 1 "$out/mumps_driver_s" "$matrix" auto "$repeats"
 
 python3 - "$results" <<'PY'
 import json, sys
 rows = [json.loads(line) for line in open(sys.argv[1])]
-print(f"{rows[0]['equations']} equations; times in s (factorization: best of the repeats), memory in MB")
-head = ("solver", "ordering", "precision", "analyse", "factorize", "solve", "factor entries", "residual", "peak RSS")
+print(f"{rows[0]['equations']} equations; threads: those the factorization used; times in s (factorization: best of the repeats), memory in MB")
+head = ("solver", "threads", "ordering", "precision", "analyse", "factorize", "solve", "factor entries", "residual", "peak RSS")
+# faer's factor_threads: what Stiction uses of the threads it is given (one below a factor size)
 table = [head] + [
-    (r["label"], r["ordering"], r["precision"], f"{r['analyse_s']:.2f}", f"{r['factorize_s']:.2f}",
+    (r["label"], str(r.get("factor_threads", r["threads"])), r["ordering"], r["precision"], f"{r['analyse_s']:.2f}", f"{r['factorize_s']:.2f}",
      f"{r['solve_s']:.3f}", f"{r['factor_entries'] / 1e6:.1f}M", f"{r['residual']:.1e}", f"{r['peak_rss_mb']:.0f}")
     for r in rows
 ]

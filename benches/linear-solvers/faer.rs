@@ -17,11 +17,12 @@
 //! where the factor is single). It prints one JSON line: the times (the factorization's best of
 //! REPEATS), the factor's entries, the relative residual ||A x - b|| / ||b||, the error against
 //! the exact solution 1, and the process's peak resident memory. Threads: rayon's pool
-//! (`RAYON_NUM_THREADS`), as in a run.
+//! (`RAYON_NUM_THREADS`) where a run would use it (a factor of at least
+//! [`PARALLEL_FACTOR_ENTRIES`] entries), else one.
 
 use std::path::Path;
 use std::time::Instant;
-use stiction_core::linear_solver::{FaerCholesky, LinearSolver, Ordering, Precision};
+use stiction_core::linear_solver::{FaerCholesky, LinearSolver, Ordering, PARALLEL_FACTOR_ENTRIES, Precision};
 use stiction_core::sparse::SparsityPattern;
 
 fn main() {
@@ -121,7 +122,8 @@ fn factor(path: &Path, ordering: &str, precision: &str, repeats: &str) -> Result
             "ordering": format!("{ordering:?}"),
             "precision": format!("{precision:?}"),
             "kind": format!("{kind:?}"),
-            "threads": rayon::current_num_threads(),
+            // Stiction factors a smaller factor on one thread
+            "factor_threads": if solver.factor_nnz() >= PARALLEL_FACTOR_ENTRIES { rayon::current_num_threads() } else { 1 },
             "read_s": read,
             "analyse_s": analyse,
             "factorize_s": factorize,

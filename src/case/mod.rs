@@ -569,7 +569,8 @@ pub struct SolverSpec {
     /// (and cut) from this iteration on, instead of running to `max_iterations` (0: never).
     #[serde(default = "default_stagnation_iterations")]
     pub stagnation_iterations: usize,
-    /// Assembly threads; 0 = all cores.
+    /// Threads of the run: assembly, and the factorization of a factor of at least 50M entries
+    /// (a smaller factor, and every one-column solve, runs on one thread: faster); 0 = all cores.
     #[serde(default)]
     pub threads: usize,
     /// Increment cut factor after a failure.

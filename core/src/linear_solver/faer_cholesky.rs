@@ -149,9 +149,25 @@ pub struct FaerCholesky {
     symbolic: SymbolicCholesky<usize>,
     factor: Factor,
     workspace: MemBuffer,
+    /// The numeric factorization's (and a many-column solve's) parallelism: see
+    /// [`PARALLEL_FACTOR_ENTRIES`].
     par: Par,
     factorizations: u64,
 }
+
+/// A factor with at least this many stored entries is factored on the current rayon pool's
+/// threads; a smaller one on one thread, and a solve for one right-hand side always on one
+/// thread ([`SOLVE_PAR`]). faer parallelizes the dense work inside each supernode, and a small
+/// factor's supernodes are too small to pay for the threads' synchronization. Measured on 2
+/// cores (`benches/linear-solvers`, single-precision factor): 3.2M entries (the quick main job)
+/// 41 ms on one thread against 70 ms on two; 70M (the CalculiX benchmark) 1.35 s against 1.39 s;
+/// 386M 12.0 s against 9.4 s. One-column solves were faster on one thread at all three sizes.
+/// With more cores the crossing comes at a smaller factor: the bound is the middle of what 2
+/// cores showed, not a tuned value.
+pub const PARALLEL_FACTOR_ENTRIES: usize = 50_000_000;
+
+/// Solves for one right-hand side: forward and back substitution are bound by memory traffic.
+const SOLVE_PAR: Par = Par::Seq;
 
 /// Refinement stops at this relative residual, or after this many corrections.
 const REFINEMENT_TOLERANCE: f64 = 1e-12;
@@ -165,7 +181,6 @@ impl FaerCholesky {
 
     /// Symbolic analysis of `pattern` with the given ordering and factor precision.
     pub fn analyse_with_precision(pattern: &SparsityPattern, ordering: Ordering, precision: Precision) -> Result<Self> {
-        let par = Par::rayon(0);
         let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
         let permutation = match ordering {
             Ordering::Amd => None,
@@ -177,10 +192,11 @@ impl FaerCholesky {
         };
         let symbolic = factorize_symbolic_cholesky(sym, Side::Lower, faer_ordering, CholeskySymbolicParams::default())
             .map_err(|e| CoreError::Factorization(format!("symbolic analysis failed: {e:?}")))?;
+        let par = if symbolic.len_val() >= PARALLEL_FACTOR_ENTRIES { Par::rayon(0) } else { Par::Seq };
         let req = StackReq::any_of(&[
             symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
             symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
-            symbolic.solve_in_place_scratch::<f64>(1, par),
+            symbolic.solve_in_place_scratch::<f64>(1, SOLVE_PAR),
         ]);
         let workspace = MemBuffer::try_new(req)
             .map_err(|_| CoreError::Factorization("out of memory for the factorization workspace".into()))?;
@@ -237,7 +253,6 @@ fn refine(
     numeric: &Numeric<f32>,
     (symbolic, matrix, pattern): (&SymbolicCholesky<usize>, &[f64], &SparsityPattern),
     rhs: &mut [f64],
-    par: Par,
     workspace: &mut MemBuffer,
 ) -> Result<bool> {
     let b = rhs.to_vec();
@@ -251,7 +266,7 @@ fn refine(
         for (s, d) in r32.iter_mut().zip(&r) {
             *s = *d as f32;
         }
-        numeric.solve(symbolic, (&mut r32, 1), par, workspace)?;
+        numeric.solve(symbolic, (&mut r32, 1), SOLVE_PAR, workspace)?;
         for (xi, c) in x.iter_mut().zip(&r32) {
             *xi += *c as f64;
         }
@@ -358,10 +373,12 @@ impl LinearSolver for FaerCholesky {
 
     fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
         match &mut self.factor {
-            Factor::Double { numeric, .. } => numeric.solve(&self.symbolic, (rhs, 1), self.par, &mut self.workspace)?,
+            Factor::Double { numeric, .. } => {
+                numeric.solve(&self.symbolic, (rhs, 1), SOLVE_PAR, &mut self.workspace)?
+            }
             Factor::Single { numeric, matrix, pattern, fallback, fallbacks, .. } => {
                 let refined = fallback.kind.is_none()
-                    && refine(numeric, (&self.symbolic, matrix, pattern), rhs, self.par, &mut self.workspace)?;
+                    && refine(numeric, (&self.symbolic, matrix, pattern), rhs, &mut self.workspace)?;
                 if !refined {
                     if fallback.kind.is_none() {
                         *fallbacks += 1;
@@ -372,7 +389,7 @@ impl LinearSolver for FaerCholesky {
                             &mut self.workspace,
                         )?;
                     }
-                    fallback.solve(&self.symbolic, (rhs, 1), self.par, &mut self.workspace)?;
+                    fallback.solve(&self.symbolic, (rhs, 1), SOLVE_PAR, &mut self.workspace)?;
                 }
             }
         }
@@ -387,7 +404,7 @@ impl LinearSolver for FaerCholesky {
             return self.solve_in_place(rhs);
         };
         let mut r32: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
-        numeric.solve(&self.symbolic, (&mut r32, 1), self.par, &mut self.workspace)?;
+        numeric.solve(&self.symbolic, (&mut r32, 1), SOLVE_PAR, &mut self.workspace)?;
         for (d, s) in rhs.iter_mut().zip(&r32) {
             *d = *s as f64;
         }

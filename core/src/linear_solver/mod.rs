@@ -11,7 +11,7 @@
 mod faer_cholesky;
 pub mod ordering;
 
-pub use faer_cholesky::{FaerCholesky, Precision};
+pub use faer_cholesky::{FaerCholesky, PARALLEL_FACTOR_ENTRIES, Precision};
 pub use ordering::Ordering;
 
 use crate::error::Result;
