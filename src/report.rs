@@ -101,9 +101,13 @@ pub fn summary_lines(summary: &RunSummary) -> Vec<String> {
                     at(i.approach_at_most_tensile_force)
                 )
             } else {
+                // a smooth law's tail (or a drawn-out neck) can hold with no point in contact
+                let holding = match i.final_n_contact {
+                    0 => "no point in contact but still pulling".to_string(),
+                    n => format!("{n} points in contact"),
+                };
                 format!(
-                    "not separated: {} points in contact, force {} at approach {} at the end; most tensile force {} at {}",
-                    i.final_n_contact,
+                    "not separated: {holding}, force {} at approach {} at the end; most tensile force {} at {}",
                     force(i.final_force, force_unit),
                     at(i.final_approach),
                     force(i.most_tensile_force, force_unit),
@@ -153,5 +157,32 @@ mod tests {
         assert_eq!(force(12.0, ""), "12.00");
         assert_eq!(significant(974.79), "974.8");
         assert_eq!(significant(0.0250), "0.02500");
+    }
+
+    /// A body drawn out under a smooth law's tail holds with no point in contact: the line says
+    /// so rather than "0 points in contact" beside "not separated".
+    #[test]
+    fn an_attached_interface_with_no_point_in_contact_says_it_still_pulls() {
+        let interface = |final_n_contact| stiction_core::record::InterfaceSummary {
+            name: "flat".into(),
+            kind: "rigid-flat".into(),
+            max_force: 31170.0,
+            most_tensile_force: -90852.0,
+            final_force: -90852.0,
+            final_approach: -3.0,
+            final_n_contact,
+            contact_events: 4,
+            ..Default::default()
+        };
+        for (n, expected) in [
+            (0, "not separated: no point in contact but still pulling, force -90.85 uN at approach -3.000 nm"),
+            (103, "not separated: 103 points in contact, force -90.85 uN at approach -3.000 nm"),
+        ] {
+            let mut summary = RunSummary { interfaces: vec![interface(n)], ..Default::default() };
+            summary.units.length = "nm".into();
+            summary.units.force = "nN".into();
+            let lines = summary_lines(&summary).join("\n");
+            assert!(lines.contains(expected), "{lines}");
+        }
     }
 }

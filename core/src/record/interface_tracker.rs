@@ -185,13 +185,17 @@ impl InterfaceTracker {
         }
         let with =
             |value: f64, unit: &str| if unit.is_empty() { format!("{value:.4}") } else { format!("{value:.4} {unit}") };
+        // a smooth law's tail (or a drawn-out neck) can hold with no point in contact
+        let holding = match now.n_contact {
+            0 => "no point in contact but a tensile force still above half the most tensile".to_string(),
+            n => format!("{n} points in contact"),
+        };
         let state = format!(
-            "interface '{}' had not separated by the end of its unloading step (t = {}): force {} at approach {} with {} points in contact, so its most tensile force ({}) is not a pull-off",
+            "interface '{}' had not separated by the end of its unloading step (t = {}): force {} at approach {} with {holding}, so its most tensile force ({}) is not a pull-off",
             model.contributions[k].name(),
             model.time,
             with(now.force, &units.force),
             with(now.approach.unwrap_or(0.0), &units.length),
-            now.n_contact,
             with(self.summaries[k].most_tensile_force, &units.force)
         );
         Some(match trailing_drawing(&self.samples[k]) {
